@@ -1,0 +1,228 @@
+// The FMI 2.0 entry points. Each checks the instance and the state it is called in,
+// forwards to Instance, and catches every exception here, at the C boundary.
+#include <exception>
+#include <new>
+#include <string>
+
+#include "fmi2Functions.h"
+#include "instance.h"
+
+using rigidfmu::Instance;
+namespace fmu = rigidfmu;
+
+namespace {
+
+constexpr unsigned kAnyState = fmu::kInstantiated | fmu::kInitializationMode |
+                               fmu::kStepComplete | fmu::kStepFailed | fmu::kTerminated |
+                               fmu::kError;
+constexpr unsigned kCanGet = fmu::kInitializationMode | fmu::kStepComplete | fmu::kStepFailed |
+                             fmu::kTerminated | fmu::kError;
+constexpr unsigned kCanSet = fmu::kInstantiated | fmu::kInitializationMode | fmu::kStepComplete;
+constexpr unsigned kCanGetStatus = fmu::kStepComplete | fmu::kStepFailed | fmu::kTerminated;
+
+// Runs body for a valid instance in an allowed state; any exception becomes fmi2Error
+// (and the Error state, since the instance may be half-updated).
+template <class Body>
+fmi2Status guarded(fmi2Component c, const char* function, unsigned allowed, Body body) {
+  if (!c) return fmi2Error;  // no instance, so no logger to tell
+  Instance* instance = static_cast<Instance*>(c);
+  try {
+    if (!instance->allowedIn(allowed, function)) return fmi2Error;
+    return body(*instance);
+  } catch (const std::bad_alloc&) {
+    instance->enterErrorState();
+    return instance->error(std::string(function) + ": out of memory");
+  } catch (const std::exception& e) {
+    instance->enterErrorState();
+    return instance->error(std::string(function) + ": " + e.what());
+  } catch (...) {
+    instance->enterErrorState();
+    return instance->error(std::string(function) + ": unknown exception");
+  }
+}
+
+fmi2Status unsupported(fmi2Component c, const char* function, const char* why) {
+  return guarded(c, function, kAnyState, [&](Instance& i) {
+    return i.error(std::string(function) + ": not supported (" + why + ")");
+  });
+}
+
+}  // namespace
+
+extern "C" {
+
+const char* fmi2GetTypesPlatform(void) { return fmi2TypesPlatform; }
+const char* fmi2GetVersion(void) { return fmi2Version; }
+
+fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
+                              fmi2String fmuResourceLocation,
+                              const fmi2CallbackFunctions* functions, fmi2Boolean visible,
+                              fmi2Boolean loggingOn) {
+  (void)visible;  // no user interface to show
+  try {
+    return Instance::create(instanceName, fmuType, fmuGUID, fmuResourceLocation, functions,
+                            loggingOn);
+  } catch (const std::exception& e) {
+    if (functions && functions->logger)
+      functions->logger(functions->componentEnvironment, instanceName ? instanceName : "",
+                        fmi2Error, "logStatusError", "fmi2Instantiate failed: %s", e.what());
+  } catch (...) {
+  }
+  return nullptr;
+}
+
+void fmi2FreeInstance(fmi2Component c) {
+  delete static_cast<Instance*>(c);
+}
+
+fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nCategories,
+                               const fmi2String categories[]) {
+  return guarded(c, "fmi2SetDebugLogging", kAnyState,
+                 [&](Instance& i) { return i.setDebugLogging(loggingOn, nCategories, categories); });
+}
+
+fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fmi2Real tolerance,
+                               fmi2Real startTime, fmi2Boolean stopTimeDefined, fmi2Real stopTime) {
+  return guarded(c, "fmi2SetupExperiment", fmu::kInstantiated, [&](Instance& i) {
+    return i.setupExperiment(toleranceDefined, tolerance, startTime, stopTimeDefined, stopTime);
+  });
+}
+
+fmi2Status fmi2EnterInitializationMode(fmi2Component c) {
+  return guarded(c, "fmi2EnterInitializationMode", fmu::kInstantiated,
+                 [](Instance& i) { return i.enterInitializationMode(); });
+}
+
+fmi2Status fmi2ExitInitializationMode(fmi2Component c) {
+  return guarded(c, "fmi2ExitInitializationMode", fmu::kInitializationMode,
+                 [](Instance& i) { return i.exitInitializationMode(); });
+}
+
+fmi2Status fmi2Terminate(fmi2Component c) {
+  return guarded(c, "fmi2Terminate", fmu::kStepComplete | fmu::kStepFailed,
+                 [](Instance& i) { return i.terminate(); });
+}
+
+fmi2Status fmi2Reset(fmi2Component c) {
+  return guarded(c, "fmi2Reset", kAnyState, [](Instance& i) { return i.reset(); });
+}
+
+fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Real value[]) {
+  return guarded(c, "fmi2GetReal", kCanGet, [&](Instance& i) { return i.getReal(vr, nvr, value); });
+}
+
+fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                          fmi2Integer value[]) {
+  return guarded(c, "fmi2GetInteger", kCanGet,
+                 [&](Instance& i) { return i.getInteger(vr, nvr, value); });
+}
+
+fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                          fmi2Boolean[]) {
+  return guarded(c, "fmi2GetBoolean", kCanGet,
+                 [&](Instance& i) { return i.noVariablesOfType("fmi2GetBoolean", vr, nvr); });
+}
+
+fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2String[]) {
+  return guarded(c, "fmi2GetString", kCanGet,
+                 [&](Instance& i) { return i.noVariablesOfType("fmi2GetString", vr, nvr); });
+}
+
+fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                       const fmi2Real value[]) {
+  return guarded(c, "fmi2SetReal", kCanSet, [&](Instance& i) { return i.setReal(vr, nvr, value); });
+}
+
+fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                          const fmi2Integer value[]) {
+  return guarded(c, "fmi2SetInteger", kCanSet,
+                 [&](Instance& i) { return i.setInteger(vr, nvr, value); });
+}
+
+fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                          const fmi2Boolean[]) {
+  return guarded(c, "fmi2SetBoolean", kCanSet,
+                 [&](Instance& i) { return i.noVariablesOfType("fmi2SetBoolean", vr, nvr); });
+}
+
+fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                         const fmi2String[]) {
+  return guarded(c, "fmi2SetString", kCanSet,
+                 [&](Instance& i) { return i.noVariablesOfType("fmi2SetString", vr, nvr); });
+}
+
+fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate*) {
+  return unsupported(c, "fmi2GetFMUstate", "canGetAndSetFMUstate is false");
+}
+fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate) {
+  return unsupported(c, "fmi2SetFMUstate", "canGetAndSetFMUstate is false");
+}
+fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate*) {
+  return unsupported(c, "fmi2FreeFMUstate", "canGetAndSetFMUstate is false");
+}
+fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate, size_t*) {
+  return unsupported(c, "fmi2SerializedFMUstateSize", "canSerializeFMUstate is false");
+}
+fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate, fmi2Byte[], size_t) {
+  return unsupported(c, "fmi2SerializeFMUstate", "canSerializeFMUstate is false");
+}
+fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte[], size_t, fmi2FMUstate*) {
+  return unsupported(c, "fmi2DeSerializeFMUstate", "canSerializeFMUstate is false");
+}
+fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference[], size_t,
+                                        const fmi2ValueReference[], size_t, const fmi2Real[],
+                                        fmi2Real[]) {
+  return unsupported(c, "fmi2GetDirectionalDerivative", "providesDirectionalDerivative is false");
+}
+fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference[], size_t,
+                                       const fmi2Integer[], const fmi2Real[]) {
+  return unsupported(c, "fmi2SetRealInputDerivatives", "canInterpolateInputs is false");
+}
+fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReference[], size_t,
+                                        const fmi2Integer[], fmi2Real[]) {
+  return unsupported(c, "fmi2GetRealOutputDerivatives", "maxOutputDerivativeOrder is 0");
+}
+
+fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
+                      fmi2Real communicationStepSize, fmi2Boolean) {
+  return guarded(c, "fmi2DoStep", fmu::kStepComplete, [&](Instance& i) {
+    return i.doStep(currentCommunicationPoint, communicationStepSize);
+  });
+}
+
+fmi2Status fmi2CancelStep(fmi2Component c) {
+  return unsupported(c, "fmi2CancelStep", "steps are synchronous, canRunAsynchronuously is false");
+}
+
+fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind, fmi2Status*) {
+  return guarded(c, "fmi2GetStatus", kCanGetStatus, [](Instance& i) {
+    i.log(fmi2Discard, "logStatusDiscard", "fmi2GetStatus: steps are synchronous, no pending status");
+    return fmi2Discard;
+  });
+}
+
+fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real* value) {
+  return guarded(c, "fmi2GetRealStatus", kCanGetStatus,
+                 [&](Instance& i) { return i.getRealStatus(s, value); });
+}
+
+fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind, fmi2Integer*) {
+  return guarded(c, "fmi2GetIntegerStatus", kCanGetStatus, [](Instance& i) {
+    i.log(fmi2Discard, "logStatusDiscard", "fmi2GetIntegerStatus: no integer status is provided");
+    return fmi2Discard;
+  });
+}
+
+fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boolean* value) {
+  return guarded(c, "fmi2GetBooleanStatus", kCanGetStatus,
+                 [&](Instance& i) { return i.getBooleanStatus(s, value); });
+}
+
+fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind, fmi2String*) {
+  return guarded(c, "fmi2GetStringStatus", kCanGetStatus, [](Instance& i) {
+    i.log(fmi2Discard, "logStatusDiscard", "fmi2GetStringStatus: steps are synchronous, no pending status");
+    return fmi2Discard;
+  });
+}
+
+}  // extern "C"

@@ -1,0 +1,324 @@
+#include "instance.h"
+
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+#include "guid.h"
+#include "model_description_xml.h"
+#include "resource_location.h"
+
+namespace rigidfmu {
+
+namespace {
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+const char* stateName(unsigned state) {
+  switch (state) {
+    case kInstantiated: return "Instantiated";
+    case kInitializationMode: return "InitializationMode";
+    case kStepComplete: return "StepComplete";
+    case kStepFailed: return "StepFailed";
+    case kTerminated: return "Terminated";
+    case kError: return "Error";
+  }
+  return "?";
+}
+
+// The logger's message is a printf format: a literal '%' must be doubled.
+std::string escapePercent(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    out += c;
+    if (c == '%') out += '%';
+  }
+  return out;
+}
+
+}  // namespace
+
+Instance* Instance::create(fmi2String instanceName, fmi2Type type, fmi2String guid,
+                           fmi2String resourceLocation, const fmi2CallbackFunctions* functions,
+                           fmi2Boolean loggingOn) {
+  if (!functions) return nullptr;  // nowhere to report to; the standard requires them
+  const std::string name = instanceName ? instanceName : "";
+  auto refuse = [&](const std::string& why) -> Instance* {
+    if (functions->logger)
+      functions->logger(functions->componentEnvironment, name.c_str(), fmi2Error,
+                        "logStatusError", escapePercent("fmi2Instantiate: " + why).c_str());
+    return nullptr;
+  };
+  if (name.empty()) return refuse("instanceName must be a non-empty string");
+  if (type != fmi2CoSimulation)
+    return refuse("this FMU implements Co-Simulation only (fmuType = fmi2CoSimulation)");
+  std::string why;
+  const auto dir = resourceDirectory(resourceLocation, why);
+  if (!dir) return refuse(why);
+  rigid::Scene scene;
+  try {
+    scene = rigid::loadSceneFile(*dir + "/scene.json");
+  } catch (const rigid::SceneError& e) {
+    return refuse(std::string("the scene in the resources is refused: ") + e.what());
+  }
+  const std::string expected = sceneGuid(scene);
+  if (!guid || expected != guid)
+    return refuse("GUID " + std::string(guid ? guid : "(null)") +
+                  " does not match this FMU's scene, whose GUID is " + expected);
+  return new Instance(name, *functions, loggingOn == fmi2True, std::move(scene));
+}
+
+Instance::Instance(std::string name, const fmi2CallbackFunctions& functions, bool loggingOn,
+                   rigid::Scene scene)
+    : name_(std::move(name)),
+      functions_(functions),
+      loggingOn_(loggingOn),
+      scene_(std::move(scene)),
+      vars_(modelVariables(scene_)) {
+  for (int i = 0; i < kLogCategoryCount; ++i) categories_.insert(kLogCategories[i].name);
+  restart();
+  log(fmi2OK, "logEvents", "instantiated scene " + scene_.model.name + " with " +
+                               std::to_string(model_.bodies.size()) + " bodies");
+}
+
+void Instance::restart() {
+  model_ = scene_.model;
+  data_ = rigid::initialData(model_);
+  state_ = kInstantiated;
+  startTime_ = time_ = lastSuccessfulTime_ = 0.0;
+  wantsToTerminate_ = false;
+}
+
+void Instance::log(fmi2Status status, const char* category, const std::string& message) const {
+  if (!functions_.logger) return;
+  const bool always = status == fmi2Warning || status == fmi2Discard || status == fmi2Error ||
+                      status == fmi2Fatal;
+  if (!always && !(loggingOn_ && categories_.count(category))) return;
+  functions_.logger(functions_.componentEnvironment, name_.c_str(), status, category,
+                    escapePercent(message).c_str());
+}
+
+fmi2Status Instance::error(const std::string& message) const {
+  log(fmi2Error, "logStatusError", message);
+  return fmi2Error;
+}
+
+bool Instance::allowedIn(unsigned allowed, const char* function) {
+  if (state_ & allowed) {
+    log(fmi2OK, "logCalls", function);
+    return true;
+  }
+  error(std::string(function) + ": not allowed in state " + stateName(state_));
+  return false;
+}
+
+fmi2Status Instance::setDebugLogging(fmi2Boolean loggingOn, size_t n,
+                                     const fmi2String categories[]) {
+  loggingOn_ = loggingOn == fmi2True;
+  if (n == 0) return fmi2OK;  // all categories keep their setting
+  if (!categories) return error("fmi2SetDebugLogging: categories is NULL with nCategories > 0");
+  std::set<std::string> chosen;
+  for (size_t i = 0; i < n; ++i) {
+    const std::string c = categories[i] ? categories[i] : "";
+    bool known = false;
+    for (int k = 0; k < kLogCategoryCount; ++k) known |= c == kLogCategories[k].name;
+    if (!known) return error("fmi2SetDebugLogging: unknown log category \"" + c + "\"");
+    chosen.insert(c);
+  }
+  categories_ = chosen;
+  return fmi2OK;
+}
+
+fmi2Status Instance::setupExperiment(fmi2Boolean toleranceDefined, fmi2Real tolerance,
+                                     fmi2Real startTime, fmi2Boolean, fmi2Real) {
+  if (!std::isfinite(startTime)) return error("fmi2SetupExperiment: startTime must be finite, got " + num(startTime));
+  if (toleranceDefined)
+    log(fmi2OK, "logEvents", "tolerance " + num(tolerance) +
+                                 " noted; the fixed-step methods use solver.step instead");
+  startTime_ = time_ = lastSuccessfulTime_ = startTime;
+  return fmi2OK;
+}
+
+fmi2Status Instance::enterInitializationMode() {
+  state_ = kInitializationMode;
+  return fmi2OK;
+}
+
+fmi2Status Instance::exitInitializationMode() {
+  for (const rigid::BodyConstants& b : model_.bodies)
+    if (b.start.orientation.norm() < 1e-12)
+      return error(b.name + ".orientation: must not be the zero quaternion");
+  data_ = rigid::initialData(model_);
+  time_ = lastSuccessfulTime_ = startTime_;
+  state_ = kStepComplete;
+  log(fmi2OK, "logEvents", "initialised at t = " + num(time_) + " with method " +
+                               rigid::methodName(model_.method) + ", step " + num(model_.maxStep) + " s");
+  return fmi2OK;
+}
+
+fmi2Status Instance::terminate() {
+  state_ = kTerminated;
+  return fmi2OK;
+}
+
+fmi2Status Instance::reset() {
+  restart();
+  log(fmi2OK, "logEvents", "reset to the just-instantiated state");
+  return fmi2OK;
+}
+
+const Variable* Instance::lookup(const char* function, fmi2ValueReference vr, BaseType type) const {
+  if (vr >= vars_.size()) {
+    error(std::string(function) + ": unknown value reference " + std::to_string(vr) +
+          " (this FMU has 0.." + std::to_string(vars_.size() - 1) + ")");
+    return nullptr;
+  }
+  const Variable& v = vars_[vr];
+  if (v.type != type) {
+    error(std::string(function) + ": value reference " + std::to_string(vr) + " (" + v.name +
+          ") is " + (v.type == BaseType::Real ? "a Real" : "an Enumeration, use fmi2Get/SetInteger"));
+    return nullptr;
+  }
+  return &v;
+}
+
+double Instance::read(const Variable& v) const {
+  if (v.quantity == Quantity::Time) return time_;
+  return readValue(v, model_, data_, setupPhase() ? Phase::Setup : Phase::Running);
+}
+
+bool Instance::writable(const Variable& v) const {
+  const bool input = v.causality == Causality::Input;
+  if (setupPhase()) {
+    if (input || v.initial == Initial::Exact) return true;
+    error(v.name + ": has no start value to set (causality " +
+          (v.causality == Causality::Output ? "output, initial calculated" : "independent") + ")");
+    return false;
+  }
+  if (input || (v.causality == Causality::Parameter && v.variability == Variability::Tunable))
+    return true;
+  error(v.name + ": only inputs and tunable parameters can be set after initialisation");
+  return false;
+}
+
+fmi2Status Instance::write(const Variable& v, double value) {
+  if (!writable(v)) return fmi2Error;
+  const std::string why =
+      writeValue(v, value, model_, data_, setupPhase() ? Phase::Setup : Phase::Running);
+  if (!why.empty()) return error(why);
+  // A change of tunable parameter between steps moves the auxiliaries' inputs only;
+  // mass-dependent outputs are refreshed so that a Get sees the new values.
+  if (!setupPhase()) rigid::refreshAuxiliaries(model_, data_);
+  return fmi2OK;
+}
+
+fmi2Status Instance::getReal(const fmi2ValueReference vr[], size_t n, fmi2Real value[]) {
+  if (n && (!vr || !value)) return error("fmi2GetReal: vr or value is NULL");
+  for (size_t i = 0; i < n; ++i) {
+    const Variable* v = lookup("fmi2GetReal", vr[i], BaseType::Real);
+    if (!v) return fmi2Error;
+    value[i] = read(*v);
+  }
+  return fmi2OK;
+}
+
+fmi2Status Instance::getInteger(const fmi2ValueReference vr[], size_t n, fmi2Integer value[]) {
+  if (n && (!vr || !value)) return error("fmi2GetInteger: vr or value is NULL");
+  for (size_t i = 0; i < n; ++i) {
+    const Variable* v = lookup("fmi2GetInteger", vr[i], BaseType::Enumeration);
+    if (!v) return fmi2Error;
+    value[i] = static_cast<fmi2Integer>(read(*v));
+  }
+  return fmi2OK;
+}
+
+fmi2Status Instance::setReal(const fmi2ValueReference vr[], size_t n, const fmi2Real value[]) {
+  if (n && (!vr || !value)) return error("fmi2SetReal: vr or value is NULL");
+  for (size_t i = 0; i < n; ++i) {
+    const Variable* v = lookup("fmi2SetReal", vr[i], BaseType::Real);
+    if (!v) return fmi2Error;
+    if (const fmi2Status s = write(*v, value[i]); s != fmi2OK) return s;
+  }
+  return fmi2OK;
+}
+
+fmi2Status Instance::setInteger(const fmi2ValueReference vr[], size_t n, const fmi2Integer value[]) {
+  if (n && (!vr || !value)) return error("fmi2SetInteger: vr or value is NULL");
+  for (size_t i = 0; i < n; ++i) {
+    const Variable* v = lookup("fmi2SetInteger", vr[i], BaseType::Enumeration);
+    if (!v) return fmi2Error;
+    if (const fmi2Status s = write(*v, value[i]); s != fmi2OK) return s;
+  }
+  return fmi2OK;
+}
+
+fmi2Status Instance::noVariablesOfType(const char* function, const fmi2ValueReference vr[],
+                                       size_t n) {
+  if (n == 0) return fmi2OK;
+  return error(std::string(function) + ": unknown value reference " +
+               (vr ? std::to_string(vr[0]) : std::string("(NULL)")) +
+               " (this FMU has no variables of this type)");
+}
+
+fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
+  if (!std::isfinite(tc)) return error("fmi2DoStep: currentCommunicationPoint must be finite, got " + num(tc));
+  if (!std::isfinite(h) || h <= 0.0)
+    return error("fmi2DoStep: communicationStepSize must be > 0 and finite, got " + num(h));
+  // Masters that accumulate time send points that jitter by a few ulps: accept them.
+  const double tolerance = 1e-9 * std::max(1.0, std::abs(time_));
+  if (std::abs(tc - time_) > tolerance)
+    return error("fmi2DoStep: currentCommunicationPoint " + num(tc) +
+                 " is not the FMU's time " + num(time_) + " (tolerance " + num(tolerance) + ")");
+  const double ratio = h / model_.maxStep;
+  if (ratio > 1e12)
+    return error("fmi2DoStep: communicationStepSize " + num(h) + " s needs more than 1e12 steps of solver.step = " +
+                 num(model_.maxStep) + " s");
+  // Internal steps of solver.step, the last one shortened; a remainder within
+  // rounding of zero is not a step of its own. Times are tc + k*step, never summed.
+  const long n = std::max(1L, static_cast<long>(std::ceil(ratio - 1e-9)));
+  for (long k = 0; k < n; ++k) {
+    const double from = static_cast<double>(k) * model_.maxStep;
+    const double to = k + 1 == n ? h : static_cast<double>(k + 1) * model_.maxStep;
+    const rigid::StepResult r = rigid::step(model_, data_, to - from);
+    if (!r.ok) {
+      time_ = lastSuccessfulTime_ = tc + from;
+      state_ = kStepFailed;
+      wantsToTerminate_ = true;
+      log(fmi2Discard, "logStatusDiscard",
+          "fmi2DoStep: the state of body " + model_.bodies[r.body].name +
+              " is not finite after the internal step from t = " + num(tc + from) + " to " +
+              num(tc + to) + " s (inputs or parameters out of range, e.g. " +
+              model_.bodies[r.body].name + ".force); the FMU stays at t = " + num(time_) +
+              " s and must be reset or terminated");
+      return fmi2Discard;
+    }
+  }
+  time_ = lastSuccessfulTime_ = tc + h;
+  return fmi2OK;
+}
+
+fmi2Status Instance::getRealStatus(fmi2StatusKind kind, fmi2Real* value) {
+  if (!value) return error("fmi2GetRealStatus: value is NULL");
+  if (kind != fmi2LastSuccessfulTime) {
+    log(fmi2Discard, "logStatusDiscard", "fmi2GetRealStatus: only fmi2LastSuccessfulTime is provided");
+    return fmi2Discard;
+  }
+  *value = lastSuccessfulTime_;
+  return fmi2OK;
+}
+
+fmi2Status Instance::getBooleanStatus(fmi2StatusKind kind, fmi2Boolean* value) {
+  if (!value) return error("fmi2GetBooleanStatus: value is NULL");
+  if (kind != fmi2Terminated) {
+    log(fmi2Discard, "logStatusDiscard", "fmi2GetBooleanStatus: only fmi2Terminated is provided");
+    return fmi2Discard;
+  }
+  *value = wantsToTerminate_ ? fmi2True : fmi2False;
+  return fmi2OK;
+}
+
+}  // namespace rigidfmu

@@ -1,0 +1,95 @@
+// One FMU instance: the FMI 2.0 co-simulation state machine around a world.
+// Owns everything it uses (no global mutable state), so instances run side by side
+// in threads.
+#pragma once
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "fmi2Functions.h"
+#include "scene.h"
+#include "variables.h"
+
+namespace rigidfmu {
+
+// The states of the FMI 2.0 co-simulation state machine, as bits so that each
+// function can name the states it is allowed in.
+enum StateBits : unsigned {
+  kInstantiated = 1u << 0,
+  kInitializationMode = 1u << 1,
+  kStepComplete = 1u << 2,  // slaveInitialized, ready for fmi2DoStep
+  kStepFailed = 1u << 3,    // after fmi2Discard
+  kTerminated = 1u << 4,
+  kError = 1u << 5,
+};
+
+class Instance {
+ public:
+  // Reads the scene from the resources and checks the GUID; on failure logs why
+  // through the callbacks' logger and returns nullptr.
+  static Instance* create(fmi2String instanceName, fmi2Type type, fmi2String guid,
+                          fmi2String resourceLocation, const fmi2CallbackFunctions* functions,
+                          fmi2Boolean loggingOn);
+
+  // Refuses (fmi2Error, logged) a call made in a state outside `allowed`.
+  bool allowedIn(unsigned allowed, const char* function);
+
+  fmi2Status setDebugLogging(fmi2Boolean loggingOn, size_t n, const fmi2String categories[]);
+  fmi2Status setupExperiment(fmi2Boolean toleranceDefined, fmi2Real tolerance, fmi2Real startTime,
+                             fmi2Boolean stopTimeDefined, fmi2Real stopTime);
+  fmi2Status enterInitializationMode();
+  fmi2Status exitInitializationMode();
+  fmi2Status terminate();
+  fmi2Status reset();
+
+  fmi2Status getReal(const fmi2ValueReference vr[], size_t n, fmi2Real value[]);
+  fmi2Status getInteger(const fmi2ValueReference vr[], size_t n, fmi2Integer value[]);
+  fmi2Status setReal(const fmi2ValueReference vr[], size_t n, const fmi2Real value[]);
+  fmi2Status setInteger(const fmi2ValueReference vr[], size_t n, const fmi2Integer value[]);
+  // Boolean and String: the FMU has no such variables; any reference is unknown.
+  fmi2Status noVariablesOfType(const char* function, const fmi2ValueReference vr[], size_t n);
+
+  fmi2Status doStep(fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize);
+
+  fmi2Status getRealStatus(fmi2StatusKind kind, fmi2Real* value);
+  fmi2Status getBooleanStatus(fmi2StatusKind kind, fmi2Boolean* value);
+
+  // Logs with a status; errors, discards and warnings always reach the logger, other
+  // categories only when debug logging has them on.
+  void log(fmi2Status status, const char* category, const std::string& message) const;
+  // Logs an error and returns fmi2Error.
+  fmi2Status error(const std::string& message) const;
+  void enterErrorState() { state_ = kError; }
+
+ private:
+  Instance(std::string name, const fmi2CallbackFunctions& functions, bool loggingOn,
+           rigid::Scene scene);
+
+  void restart();  // the just-instantiated state
+  // The variable behind vr if it exists and has the given type; logs otherwise.
+  const Variable* lookup(const char* function, fmi2ValueReference vr, BaseType type) const;
+  // Whether a variable may be written in the current state; logs otherwise.
+  bool writable(const Variable& v) const;
+  fmi2Status write(const Variable& v, double value);
+  double read(const Variable& v) const;
+  bool setupPhase() const { return state_ & (kInstantiated | kInitializationMode); }
+
+  std::string name_;
+  fmi2CallbackFunctions functions_;
+  bool loggingOn_;
+  std::set<std::string> categories_;  // enabled debug categories
+
+  rigid::Scene scene_;  // as read from the resources, for fmi2Reset
+  std::vector<Variable> vars_;
+  rigid::WorldModel model_;  // the scene's constants with parameters applied
+  rigid::WorldData data_;
+
+  unsigned state_ = kInstantiated;
+  double startTime_ = 0.0;  // s
+  double time_ = 0.0;       // s, time of the last communication point
+  double lastSuccessfulTime_ = 0.0;
+  bool wantsToTerminate_ = false;  // fmi2Terminated status
+};
+
+}  // namespace rigidfmu

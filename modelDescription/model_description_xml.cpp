@@ -1,0 +1,169 @@
+#include "model_description_xml.h"
+
+#include <cstdio>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "guid.h"
+#include "variables.h"
+
+namespace rigidfmu {
+
+const LogCategory kLogCategories[] = {
+    {"logStatusWarning", "warnings"},
+    {"logStatusDiscard", "steps that could not be completed (fmi2Discard)"},
+    {"logStatusError", "errors: bad arguments, calls out of order, bad scenes"},
+    {"logEvents", "instantiation, initialisation, resets and parameter changes"},
+    {"logCalls", "every FMI call (verbose)"},
+};
+const int kLogCategoryCount = sizeof(kLogCategories) / sizeof(kLogCategories[0]);
+
+namespace {
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// SI base-unit exponents of every unit a variable may carry.
+struct UnitDef {
+  int kg, m, s, rad;
+};
+const std::map<std::string, UnitDef> kUnits = {
+    {"1", {0, 0, 0, 0}},      {"s", {0, 0, 1, 0}},        {"m", {0, 1, 0, 0}},
+    {"kg", {1, 0, 0, 0}},     {"m/s", {0, 1, -1, 0}},     {"m/s2", {0, 1, -2, 0}},
+    {"rad/s", {0, 0, -1, 1}}, {"kg.m/s", {1, 1, -1, 0}},  {"kg.m2/s", {1, 2, -1, 0}},
+    {"N", {1, 1, -2, 0}},     {"N.m", {1, 2, -2, 0}},
+};
+
+const char* causalityName(Causality c) {
+  switch (c) {
+    case Causality::Parameter: return "parameter";
+    case Causality::Input: return "input";
+    case Causality::Output: return "output";
+    case Causality::Independent: return "independent";
+  }
+  return "";
+}
+
+const char* variabilityName(Variability v) {
+  switch (v) {
+    case Variability::Fixed: return "fixed";
+    case Variability::Tunable: return "tunable";
+    case Variability::Continuous: return "continuous";
+  }
+  return "";
+}
+
+std::string joinIndices(const std::vector<unsigned>& idx) {
+  std::string s;
+  for (unsigned i : idx) s += (s.empty() ? "" : " ") + std::to_string(i);
+  return s;
+}
+
+}  // namespace
+
+std::string modelDescriptionXml(const rigid::Scene& scene) {
+  const rigid::WorldModel& model = scene.model;
+  const std::vector<Variable> vars = modelVariables(scene);
+  const rigid::WorldData data = rigid::initialData(model);
+  std::ostringstream x;
+  x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+    << "<fmiModelDescription fmiVersion=\"2.0\" modelName=\"" << escape(model.name) << "\"\n"
+    << "  guid=\"" << sceneGuid(scene) << "\"\n"
+    << "  description=\"rigid bodies of scene " << escape(model.name)
+    << " (state X, q, P, L per body)\"\n"
+    << "  generationTool=\"rigidfmu\" variableNamingConvention=\"structured\""
+    << " numberOfEventIndicators=\"0\">\n";
+  x << "  <CoSimulation modelIdentifier=\"" << escape(model.name) << "\""
+    << " canHandleVariableCommunicationStepSize=\"true\" canInterpolateInputs=\"false\""
+    << " maxOutputDerivativeOrder=\"0\" canRunAsynchronuously=\"false\""
+    << " canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\""
+    << " canGetAndSetFMUstate=\"false\" canSerializeFMUstate=\"false\""
+    << " providesDirectionalDerivative=\"false\" needsExecutionTool=\"false\"/>\n";
+
+  std::set<std::string> used;
+  for (const Variable& v : vars)
+    if (v.type == BaseType::Real) used.insert(v.unit);
+  x << "  <UnitDefinitions>\n";
+  for (const std::string& u : used) {
+    const UnitDef& d = kUnits.at(u);
+    x << "    <Unit name=\"" << escape(u) << "\"><BaseUnit";
+    if (d.kg) x << " kg=\"" << d.kg << "\"";
+    if (d.m) x << " m=\"" << d.m << "\"";
+    if (d.s) x << " s=\"" << d.s << "\"";
+    if (d.rad) x << " rad=\"" << d.rad << "\"";
+    x << "/></Unit>\n";
+  }
+  x << "  </UnitDefinitions>\n";
+
+  x << "  <TypeDefinitions>\n    <SimpleType name=\"SolverMethod\">\n      <Enumeration>\n";
+  for (const rigid::MethodInfo& m : rigid::methods())
+    x << "        <Item name=\"" << m.name << "\" value=\"" << static_cast<int>(m.method)
+      << "\" description=\"" << escape(m.description) << "\"/>\n";
+  x << "      </Enumeration>\n    </SimpleType>\n  </TypeDefinitions>\n";
+
+  x << "  <LogCategories>\n";
+  for (int i = 0; i < kLogCategoryCount; ++i)
+    x << "    <Category name=\"" << kLogCategories[i].name << "\" description=\""
+      << escape(kLogCategories[i].description) << "\"/>\n";
+  x << "  </LogCategories>\n";
+
+  x << "  <DefaultExperiment startTime=\"0\" stepSize=\"" << fmt(model.maxStep) << "\"/>\n";
+
+  x << "  <ModelVariables>\n";
+  for (const Variable& v : vars) {
+    x << "    <!-- index " << v.vr + 1 << " -->\n"
+      << "    <ScalarVariable name=\"" << escape(v.name) << "\" valueReference=\"" << v.vr
+      << "\" description=\"" << escape(v.description) << "\" causality=\""
+      << causalityName(v.causality) << "\" variability=\"" << variabilityName(v.variability)
+      << "\"";
+    if (v.initial == Initial::Exact) x << " initial=\"exact\"";
+    if (v.initial == Initial::Calculated) x << " initial=\"calculated\"";
+    x << ">\n      ";
+    const bool hasStart = v.initial == Initial::Exact || v.causality == Causality::Input;
+    const double start = readValue(v, model, data, Phase::Setup);
+    if (v.type == BaseType::Enumeration) {
+      x << "<Enumeration declaredType=\"SolverMethod\" start=\"" << static_cast<int>(start) << "\"/>";
+    } else {
+      x << "<Real unit=\"" << escape(v.unit) << "\"";
+      if (hasStart) x << " start=\"" << fmt(start) << "\"";
+      x << "/>";
+    }
+    x << "\n    </ScalarVariable>\n";
+  }
+  x << "  </ModelVariables>\n";
+
+  // Outputs at a communication point depend on the state only: inputs act through
+  // the integration of the step, never directly, hence empty dependencies.
+  x << "  <ModelStructure>\n    <Outputs>\n";
+  for (const Variable& v : vars)
+    if (v.causality == Causality::Output)
+      x << "      <Unknown index=\"" << v.vr + 1 << "\" dependencies=\"\"/>\n";
+  x << "    </Outputs>\n    <InitialUnknowns>\n";
+  for (const Variable& v : vars)
+    if (v.causality == Causality::Output && v.initial == Initial::Calculated)
+      x << "      <Unknown index=\"" << v.vr + 1 << "\" dependencies=\""
+        << joinIndices(initialDependencies(vars, v, model)) << "\"/>\n";
+  x << "    </InitialUnknowns>\n  </ModelStructure>\n";
+  x << "</fmiModelDescription>\n";
+  return x.str();
+}
+
+}  // namespace rigidfmu

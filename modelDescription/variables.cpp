@@ -1,0 +1,223 @@
+#include "variables.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace rigidfmu {
+
+using rigid::BodyConstants;
+using rigid::Scene;
+using rigid::WorldData;
+using rigid::WorldModel;
+
+namespace {
+
+const char* const kAxis[3] = {"x", "y", "z"};
+const char* const kQuatPart[4] = {"w", "x", "y", "z"};
+
+struct VectorQuantity {
+  Quantity quantity;
+  const char* field;   // name after "<body>."
+  int size;
+  Causality causality;
+  Initial initial;
+  const char* unit;
+  const char* meaning;
+};
+
+// Per-body vectors, in the order they appear in the table.
+const VectorQuantity kBodyVectors[] = {
+    {Quantity::Position, "position", 3, Causality::Output, Initial::Exact, "m",
+     "centre of mass X, world frame"},
+    {Quantity::Orientation, "orientation", 4, Causality::Output, Initial::Exact, "1",
+     "orientation q, unit quaternion body to world"},
+    {Quantity::Velocity, "velocity", 3, Causality::Output, Initial::Exact, "m/s",
+     "velocity V = P/M, world frame"},
+    {Quantity::AngularVelocity, "angularVelocity", 3, Causality::Output, Initial::Exact, "rad/s",
+     "angular velocity omega = I(t)^-1 L, world frame"},
+    {Quantity::LinearMomentum, "linearMomentum", 3, Causality::Output, Initial::Calculated,
+     "kg.m/s", "linear momentum P, world frame"},
+    {Quantity::AngularMomentum, "angularMomentum", 3, Causality::Output, Initial::Calculated,
+     "kg.m2/s", "angular momentum L about the centre of mass, world frame"},
+    {Quantity::Force, "force", 3, Causality::Input, Initial::None, "N",
+     "external force at the centre of mass, world frame"},
+    {Quantity::Torque, "torque", 3, Causality::Input, Initial::None, "N.m",
+     "external torque, world frame"},
+};
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+double vectorPart(const rigid::Vec3& v, int c) { return v[c]; }
+
+double quatPart(const rigid::Quat& q, int c) {
+  switch (c) {
+    case 0: return q.w();
+    case 1: return q.x();
+    case 2: return q.y();
+    default: return q.z();
+  }
+}
+
+void setQuatPart(rigid::Quat& q, int c, double value) {
+  switch (c) {
+    case 0: q.w() = value; break;
+    case 1: q.x() = value; break;
+    case 2: q.y() = value; break;
+    default: q.z() = value; break;
+  }
+}
+
+}  // namespace
+
+std::vector<Variable> modelVariables(const Scene& scene) {
+  std::vector<Variable> vars;
+  auto add = [&](Variable v) {
+    v.vr = static_cast<unsigned>(vars.size());
+    vars.push_back(std::move(v));
+  };
+
+  add({0, "time", Quantity::Time, -1, 0, Causality::Independent, Variability::Continuous,
+       Initial::None, BaseType::Real, "s", "simulation time"});
+  for (int c = 0; c < 3; ++c)
+    add({0, std::string("gravity[") + std::to_string(c + 1) + "]", Quantity::Gravity, -1, c,
+         Causality::Parameter, Variability::Tunable, Initial::Exact, BaseType::Real, "m/s2",
+         std::string("gravitational acceleration g, ") + kAxis[c] + " (world frame)"});
+  add({0, "solver.method", Quantity::SolverMethod, -1, 0, Causality::Parameter,
+       Variability::Fixed, Initial::Exact, BaseType::Enumeration, "",
+       "integration method (unit: none, an enumeration)"});
+  add({0, "solver.step", Quantity::SolverStep, -1, 0, Causality::Parameter, Variability::Fixed,
+       Initial::Exact, BaseType::Real, "s",
+       "largest internal step; a communication step is split into steps of at most this"});
+
+  for (size_t b = 0; b < scene.model.bodies.size(); ++b) {
+    const BodyConstants& body = scene.model.bodies[b];
+    const int bi = static_cast<int>(b);
+    add({0, body.name + ".mass", Quantity::Mass, bi, 0, Causality::Parameter, Variability::Fixed,
+         Initial::Exact, BaseType::Real, "kg", body.name + ": mass M"});
+    add({0, body.name + ".restitution", Quantity::Restitution, bi, 0, Causality::Parameter,
+         Variability::Fixed, Initial::Exact, BaseType::Real, "1",
+         body.name + ": coefficient of restitution xi, in [0, 1]"});
+    for (const VectorQuantity& q : kBodyVectors) {
+      for (int c = 0; c < q.size; ++c) {
+        const char* part = q.size == 4 ? kQuatPart[c] : kAxis[c];
+        add({0, body.name + "." + q.field + "[" + std::to_string(c + 1) + "]", q.quantity, bi, c,
+             q.causality, Variability::Continuous, q.initial, BaseType::Real, q.unit,
+             body.name + ": " + q.meaning + ", " + part});
+      }
+    }
+  }
+  return vars;
+}
+
+std::vector<unsigned> initialDependencies(const std::vector<Variable>& vars, const Variable& v,
+                                          const WorldModel& model) {
+  // P = M V depends on the mass and the same velocity component; L = R Ibody R^T omega
+  // on the orientation, every angular velocity component and, when Ibody comes from
+  // the shape, on the mass.
+  std::vector<unsigned> deps;
+  for (const Variable& k : vars) {
+    if (k.body != v.body) continue;
+    bool dep = false;
+    if (v.quantity == Quantity::LinearMomentum)
+      dep = k.quantity == Quantity::Mass ||
+            (k.quantity == Quantity::Velocity && k.component == v.component);
+    else if (v.quantity == Quantity::AngularMomentum)
+      dep = k.quantity == Quantity::Orientation || k.quantity == Quantity::AngularVelocity ||
+            (k.quantity == Quantity::Mass && model.bodies[v.body].inertiaFromShape);
+    if (dep) deps.push_back(k.vr + 1);
+  }
+  std::sort(deps.begin(), deps.end());
+  return deps;
+}
+
+double readValue(const Variable& v, const WorldModel& model, const WorldData& data, Phase phase) {
+  const int b = v.body, c = v.component;
+  const bool setup = phase == Phase::Setup;
+  switch (v.quantity) {
+    case Quantity::Time: return 0.0;
+    case Quantity::Gravity: return model.gravity[c];
+    case Quantity::SolverMethod: return static_cast<double>(static_cast<int>(model.method));
+    case Quantity::SolverStep: return model.maxStep;
+    case Quantity::Mass: return model.bodies[b].mass;
+    case Quantity::Restitution: return model.bodies[b].restitution;
+    case Quantity::Position:
+      return setup ? model.bodies[b].start.position[c] : vectorPart(data.Y[b].X, c);
+    case Quantity::Orientation:
+      return quatPart(setup ? model.bodies[b].start.orientation : data.Y[b].q, c);
+    case Quantity::Velocity:
+      return setup ? model.bodies[b].start.velocity[c] : vectorPart(data.aux[b].V, c);
+    case Quantity::AngularVelocity:
+      return setup ? model.bodies[b].start.angularVelocity[c] : vectorPart(data.aux[b].omega, c);
+    case Quantity::LinearMomentum:
+      return setup ? vectorPart(rigid::initialState(model.bodies[b]).P, c) : data.Y[b].P[c];
+    case Quantity::AngularMomentum:
+      return setup ? vectorPart(rigid::initialState(model.bodies[b]).L, c) : data.Y[b].L[c];
+    case Quantity::Force: return data.input[b].force[c];
+    case Quantity::Torque: return data.input[b].torque[c];
+  }
+  return 0.0;
+}
+
+std::string writeValue(const Variable& v, double value, WorldModel& model, WorldData& data,
+                       Phase phase) {
+  if (!std::isfinite(value)) return v.name + ": must be finite, got " + fmt(value);
+  const int b = v.body, c = v.component;
+  switch (v.quantity) {
+    case Quantity::Time:
+      return v.name + ": the independent variable cannot be set";
+    case Quantity::Gravity:
+      model.gravity[c] = value;
+      return "";
+    case Quantity::SolverMethod: {
+      const auto method = rigid::methodFromValue(static_cast<int>(value));
+      if (!method || value != std::floor(value)) {
+        std::string list;
+        for (const rigid::MethodInfo& m : rigid::methods())
+          list += std::string(list.empty() ? "" : ", ") + std::to_string(static_cast<int>(m.method)) +
+                  " (" + m.name + ")";
+        return v.name + ": must be one of " + list + ", got " + fmt(value);
+      }
+      model.method = *method;
+      return "";
+    }
+    case Quantity::SolverStep:
+      if (!(value > 0.0)) return v.name + ": must be > 0 s, got " + fmt(value);
+      model.maxStep = value;
+      return "";
+    case Quantity::Mass:
+      if (!(value > 0.0)) return v.name + ": must be > 0 kg, got " + fmt(value);
+      rigid::setMass(model.bodies[b], value);
+      return "";
+    case Quantity::Restitution:
+      if (value < 0.0 || value > 1.0) return v.name + ": must be in [0, 1], got " + fmt(value);
+      model.bodies[b].restitution = value;
+      return "";
+    case Quantity::Position:
+    case Quantity::Orientation:
+    case Quantity::Velocity:
+    case Quantity::AngularVelocity:
+      if (phase != Phase::Setup) return v.name + ": an output; it can be set only before the run starts";
+      if (v.quantity == Quantity::Position) model.bodies[b].start.position[c] = value;
+      if (v.quantity == Quantity::Orientation) setQuatPart(model.bodies[b].start.orientation, c, value);
+      if (v.quantity == Quantity::Velocity) model.bodies[b].start.velocity[c] = value;
+      if (v.quantity == Quantity::AngularVelocity) model.bodies[b].start.angularVelocity[c] = value;
+      return "";
+    case Quantity::LinearMomentum:
+    case Quantity::AngularMomentum:
+      return v.name + ": a calculated output; set velocity or angularVelocity instead";
+    case Quantity::Force:
+      data.input[b].force[c] = value;
+      return "";
+    case Quantity::Torque:
+      data.input[b].torque[c] = value;
+      return "";
+  }
+  return v.name + ": cannot be set";
+}
+
+}  // namespace rigidfmu

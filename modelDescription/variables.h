@@ -1,0 +1,61 @@
+// The FMU's variables of one scene: the table that modelDescription.xml is written
+// from and that the FMU maps value references with (one source of truth), and the
+// single place where a variable's value is read from or written to the world.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scene.h"
+
+namespace rigidfmu {
+
+enum class Causality { Parameter, Input, Output, Independent };
+enum class Variability { Fixed, Tunable, Continuous };
+enum class Initial { None, Exact, Calculated };
+// FMI base type. Enumeration values travel through fmi2Get/SetInteger.
+enum class BaseType { Real, Enumeration };
+
+enum class Quantity {
+  Time, Gravity, SolverMethod, SolverStep,
+  Mass, Restitution,
+  Position, Orientation, Velocity, AngularVelocity, LinearMomentum, AngularMomentum,
+  Force, Torque,
+};
+
+struct Variable {
+  unsigned vr = 0;          // value reference = index in the table
+  std::string name;         // structured name, e.g. ball.position[1]
+  Quantity quantity = Quantity::Time;
+  int body = -1;            // index of the body, -1 for world variables
+  int component = 0;        // 0-based: x, y, z; quaternions w, x, y, z
+  Causality causality = Causality::Output;
+  Variability variability = Variability::Continuous;
+  Initial initial = Initial::None;
+  BaseType type = BaseType::Real;
+  std::string unit;         // Real only
+  std::string description;
+};
+
+// Every variable of the scene's FMU, in value-reference order.
+std::vector<Variable> modelVariables(const rigid::Scene& scene);
+
+// Indices (1-based, as in ModelStructure) of the variables an initial unknown depends on.
+std::vector<unsigned> initialDependencies(const std::vector<Variable>& vars, const Variable& v,
+                                          const rigid::WorldModel& model);
+
+// Phase of a run: before the run starts, exact start values are read from and written
+// to the bodies' start values; afterwards outputs come from the state.
+enum class Phase { Setup, Running };
+
+// The value of a Real or Enumeration variable (time is kept by the FMU, not here).
+double readValue(const Variable& v, const rigid::WorldModel& model, const rigid::WorldData& data,
+                 Phase phase);
+
+// Writes a value; returns "" on success or the reason it is refused, naming the
+// variable and the limit. Writes only what the variable owns; the caller decides when
+// a variable may be written at all.
+std::string writeValue(const Variable& v, double value, rigid::WorldModel& model,
+                       rigid::WorldData& data, Phase phase);
+
+}  // namespace rigidfmu

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs everything rigidfmu needs on a fresh Debian machine: the Debian packages
+# (compiler, CMake, Eigen, FCL, nlohmann-json, GoogleTest) and a Python venv (.venv)
+# with the pinned packages of requirements.txt. Idempotent and quick when done.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+
+debian_packages=(
+  build-essential cmake python3-venv
+  libeigen3-dev libfcl-dev nlohmann-json3-dev libgtest-dev
+)
+missing=()
+for p in "${debian_packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing Debian packages: ${missing[*]}"
+  sudo_cmd=(); [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+venv="$root/.venv"
+stamp="$venv/.requirements.sha256"
+want="$(sha256sum "$root/requirements.txt" | cut -d' ' -f1)"
+if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
+  echo "setup: creating $venv with the pinned Python packages"
+  python3 -m venv "$venv"
+  "$venv/bin/pip" install -q --disable-pip-version-check -r "$root/requirements.txt"
+  echo "$want" > "$stamp"
+fi

@@ -1,0 +1,52 @@
+#include "body.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+namespace rigid {
+
+void setMass(BodyConstants& body, double mass) {
+  body.mass = mass;
+  if (body.inertiaFromShape) {
+    const Vec3 I = solidPrincipalInertia(body.shape, mass);
+    body.Ibody = I.asDiagonal();
+    body.IbodyInv = I.cwiseInverse().asDiagonal();
+  }
+}
+
+void setInertia(BodyConstants& body, const Mat3& Ibody) {
+  body.inertiaFromShape = false;
+  body.Ibody = Ibody;
+  // Symmetric positive definite: invert through the eigen-decomposition, which stays
+  // accurate for the strongly anisotropic (needle-like) tensors that a scene may give.
+  Eigen::SelfAdjointEigenSolver<Mat3> eig(Ibody);
+  body.IbodyInv = eig.eigenvectors() * eig.eigenvalues().cwiseInverse().asDiagonal() *
+                  eig.eigenvectors().transpose();
+}
+
+void computeAuxiliaries(const BodyConstants& body, const BodyState& y, BodyAux& aux) {
+  aux.V = y.P / body.mass;
+  aux.R = y.q.normalized().toRotationMatrix();
+  aux.Iinv = aux.R * body.IbodyInv * aux.R.transpose();
+  aux.omega = aux.Iinv * y.L;
+}
+
+BodyState initialState(const BodyConstants& body) {
+  BodyState y;
+  y.X = body.start.position;
+  y.q = body.start.orientation.normalized();
+  y.P = body.mass * body.start.velocity;
+  const Mat3 R = y.q.toRotationMatrix();
+  y.L = R * body.Ibody * R.transpose() * body.start.angularVelocity;
+  return y;
+}
+
+double kineticEnergy(const BodyState& y, const BodyAux& aux) {
+  return 0.5 * (y.P.dot(aux.V) + y.L.dot(aux.omega));
+}
+
+bool isFinite(const BodyState& y) {
+  return y.X.allFinite() && y.q.coeffs().allFinite() && y.P.allFinite() && y.L.allFinite();
+}
+
+}  // namespace rigid

@@ -1,0 +1,84 @@
+// One rigid body, split as the seed paper splits it: constants, the state vector
+// Y = (X, q, P, L), and auxiliary quantities derived from Y.
+#pragma once
+
+#include <string>
+
+#include "math_types.h"
+#include "shape.h"
+
+namespace rigid {
+
+// Where a body starts: the scene's initial conditions (FMI start values).
+struct BodyStart {
+  Vec3 position = Vec3::Zero();         // m, centre of mass, world frame
+  Quat orientation = Quat::Identity();  // body -> world; need not be unit until the run starts
+  Vec3 velocity = Vec3::Zero();         // m/s, world frame
+  Vec3 angularVelocity = Vec3::Zero();  // rad/s, world frame
+};
+
+// Body constants: fixed once a run starts.
+struct BodyConstants {
+  std::string name;
+  Shape shape;
+  double mass = 1.0;                  // M, kg
+  Mat3 Ibody = Mat3::Identity();      // kg m^2, about the centre of mass, body frame
+  Mat3 IbodyInv = Mat3::Identity();   // 1/(kg m^2); inverted once here, never per step
+  bool inertiaFromShape = true;       // Ibody is the solid shape's and follows mass
+  double restitution = 0.5;           // xi, 1
+  double staticFriction = 0.6;        // mu_s, 1
+  double kineticFriction = 0.4;       // mu_k, 1
+  BodyStart start;
+};
+
+// Sets M; when the inertia comes from the shape, Ibody scales with it.
+void setMass(BodyConstants& body, double mass);
+
+// Sets a given inertia tensor (already checked symmetric positive definite).
+void setInertia(BodyConstants& body, const Mat3& Ibody);
+
+// The state vector Y of one body.
+struct BodyState {
+  Vec3 X = Vec3::Zero();    // m, centre of mass, world frame
+  Quat q = Quat::Identity();  // orientation, body -> world, unit after every step
+  Vec3 P = Vec3::Zero();    // kg m/s, linear momentum
+  Vec3 L = Vec3::Zero();    // kg m^2/s, angular momentum about the centre of mass
+};
+
+// dY/dt = (V, 1/2 omega q, F, T).
+struct BodyDerivative {
+  Vec3 dX;
+  Eigen::Vector4d dq;  // in Quat's storage order (x, y, z, w)
+  Vec3 dP;
+  Vec3 dL;
+};
+
+// Auxiliary quantities of one body, derived from Y.
+struct BodyAux {
+  Vec3 V;      // m/s, P / M                      (computeAuxiliaries)
+  Mat3 R;      // rotation of q, body -> world    (computeAuxiliaries)
+  Mat3 Iinv;   // 1/(kg m^2), R Ibody^-1 R^T       (computeAuxiliaries)
+  Vec3 omega;  // rad/s, I(t)^-1 L, world frame   (computeAuxiliaries)
+  Vec3 F;      // N, total force at the centre of mass   (force stage)
+  Vec3 T;      // N m, total torque about the centre of mass (force stage)
+};
+
+// External load applied by the FMU's inputs; held over a communication step.
+struct BodyInput {
+  Vec3 force = Vec3::Zero();   // N, at the centre of mass, world frame
+  Vec3 torque = Vec3::Zero();  // N m, world frame
+};
+
+// V, R, I(t)^-1 and omega from Y. q need not be unit (Runge-Kutta stages are not):
+// R is taken from the normalised q.
+void computeAuxiliaries(const BodyConstants& body, const BodyState& y, BodyAux& aux);
+
+// Y of a body at rest in its start pose, with P = M V0 and L = I(0) omega0.
+BodyState initialState(const BodyConstants& body);
+
+// Kinetic energy 1/2 (P.V + L.omega), J.
+double kineticEnergy(const BodyState& y, const BodyAux& aux);
+
+bool isFinite(const BodyState& y);
+
+}  // namespace rigid

@@ -1,0 +1,83 @@
+#include "integrator.h"
+
+#include "dynamics.h"
+#include "world.h"
+
+namespace rigid {
+
+const std::vector<MethodInfo>& methods() {
+  static const std::vector<MethodInfo> kMethods = {
+      {Method::Euler, "euler", "explicit Euler, first order (the seed's Euler method)"},
+      {Method::RK4, "rk4", "classic Runge-Kutta, fourth order (the seed's default)"},
+  };
+  return kMethods;
+}
+
+std::optional<Method> methodFromName(const std::string& name) {
+  for (const MethodInfo& m : methods())
+    if (name == m.name) return m.method;
+  return std::nullopt;
+}
+
+std::optional<Method> methodFromValue(int value) {
+  for (const MethodInfo& m : methods())
+    if (value == static_cast<int>(m.method)) return m.method;
+  return std::nullopt;
+}
+
+const char* methodName(Method method) {
+  for (const MethodInfo& m : methods())
+    if (m.method == method) return m.name;
+  return "?";
+}
+
+namespace {
+
+// out = y + h * k, body by body.
+void addScaled(const std::vector<BodyState>& y, double h, const std::vector<BodyDerivative>& k,
+               std::vector<BodyState>& out) {
+  for (size_t i = 0; i < y.size(); ++i) {
+    out[i].X = y[i].X + h * k[i].dX;
+    out[i].q.coeffs() = y[i].q.coeffs() + h * k[i].dq;
+    out[i].P = y[i].P + h * k[i].dP;
+    out[i].L = y[i].L + h * k[i].dL;
+  }
+}
+
+void eulerStep(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
+  std::vector<BodyDerivative>& k1 = d.scratch.k[0];
+  evaluateDerivative(m, d.input, d.Y, d.aux, k1);
+  addScaled(d.Y, h, k1, next);
+}
+
+void rk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
+  auto& [k1, k2, k3, k4] = d.scratch.k;
+  std::vector<BodyState>& stage = d.scratch.stage;
+  evaluateDerivative(m, d.input, d.Y, d.aux, k1);
+  addScaled(d.Y, 0.5 * h, k1, stage);
+  evaluateDerivative(m, d.input, stage, d.aux, k2);
+  addScaled(d.Y, 0.5 * h, k2, stage);
+  evaluateDerivative(m, d.input, stage, d.aux, k3);
+  addScaled(d.Y, h, k3, stage);
+  evaluateDerivative(m, d.input, stage, d.aux, k4);
+  const double w = h / 6.0;
+  for (size_t i = 0; i < d.Y.size(); ++i) {
+    const BodyState& y = d.Y[i];
+    BodyState& out = next[i];
+    out.X = y.X + w * (k1[i].dX + 2.0 * (k2[i].dX + k3[i].dX) + k4[i].dX);
+    out.q.coeffs() = y.q.coeffs() + w * (k1[i].dq + 2.0 * (k2[i].dq + k3[i].dq) + k4[i].dq);
+    out.P = y.P + w * (k1[i].dP + 2.0 * (k2[i].dP + k3[i].dP) + k4[i].dP);
+    out.L = y.L + w * (k1[i].dL + 2.0 * (k2[i].dL + k3[i].dL) + k4[i].dL);
+  }
+}
+
+}  // namespace
+
+void integrate(const WorldModel& model, WorldData& data, double h, std::vector<BodyState>& next) {
+  switch (model.method) {
+    case Method::Euler: eulerStep(model, data, h, next); return;
+    case Method::RK4: rk4Step(model, data, h, next); return;
+  }
+}
+
+}  // namespace rigid

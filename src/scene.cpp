@@ -1,0 +1,332 @@
+#include "scene.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+namespace rigid {
+
+using json = nlohmann::json;
+
+namespace {
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.15g", v);
+  return buf;
+}
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw SceneError(path + ": " + what);
+}
+
+std::string join(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+bool isIdentifier(const std::string& s) {
+  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+  for (char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+  return true;
+}
+
+// Reads the fields of one JSON object; every key it does not know is refused, so that
+// a misspelt field is reported instead of silently taking its default.
+class Object {
+ public:
+  Object(const json& j, std::string path, std::initializer_list<const char*> known)
+      : j_(j), path_(std::move(path)) {
+    if (!j.is_object()) fail(path_.empty() ? "scene" : path_, "must be a JSON object");
+    std::set<std::string> allowed(known.begin(), known.end());
+    for (const auto& item : j.items()) {
+      if (!allowed.count(item.key())) {
+        std::string list;
+        for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
+        fail(join(path_, item.key()), "unknown field (known: " + list + ")");
+      }
+    }
+  }
+
+  bool has(const char* key) const { return j_.contains(key); }
+  const json& at(const char* key) const { return j_.at(key); }
+  std::string path(const char* key) const { return join(path_, key); }
+
+  double number(const char* key, const double* fallback = nullptr) const {
+    if (!has(key)) {
+      if (fallback) return *fallback;
+      fail(path(key), "is required");
+    }
+    return toNumber(at(key), path(key));
+  }
+  double number(const char* key, double fallback) const { return number(key, &fallback); }
+
+  std::string string(const char* key, const char* fallback = nullptr) const {
+    if (!has(key)) {
+      if (fallback) return fallback;
+      fail(path(key), "is required");
+    }
+    if (!at(key).is_string()) fail(path(key), "must be a string");
+    return at(key).get<std::string>();
+  }
+
+  Eigen::VectorXd vector(const char* key, int n, const Eigen::VectorXd& fallback) const {
+    if (!has(key)) return fallback;
+    return toVector(at(key), path(key), n);
+  }
+  Vec3 vec3(const char* key, const Vec3& fallback) const { return vector(key, 3, fallback); }
+
+  static double toNumber(const json& v, const std::string& path) {
+    if (!v.is_number()) fail(path, "must be a number");
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) fail(path, "must be finite, got " + num(x));
+    return x;
+  }
+
+  static Eigen::VectorXd toVector(const json& v, const std::string& path, int n) {
+    if (!v.is_array() || static_cast<int>(v.size()) != n)
+      fail(path, "must be an array of " + std::to_string(n) + " numbers");
+    Eigen::VectorXd out(n);
+    for (int i = 0; i < n; ++i) out[i] = toNumber(v[i], path + "[" + std::to_string(i) + "]");
+    return out;
+  }
+
+ private:
+  const json& j_;
+  std::string path_;
+};
+
+double positive(const Object& o, const char* key, const double* fallback = nullptr) {
+  const double v = o.number(key, fallback);
+  if (!(v > 0.0)) fail(o.path(key), "must be > 0, got " + num(v));
+  return v;
+}
+
+double inRange(const Object& o, const char* key, double fallback, double lo, double hi) {
+  const double v = o.number(key, fallback);
+  if (v < lo || v > hi) fail(o.path(key), "must be in [" + num(lo) + ", " + num(hi) + "], got " + num(v));
+  return v;
+}
+
+std::string identifier(const Object& o, const char* key, const char* fallback = nullptr) {
+  const std::string s = o.string(key, fallback);
+  if (!isIdentifier(s))
+    fail(o.path(key), "must be a C identifier ([A-Za-z_][A-Za-z0-9_]*), got \"" + s + "\"");
+  return s;
+}
+
+Quat unitQuaternion(const Object& o, const char* key) {
+  const Eigen::VectorXd v = o.vector(key, 4, Eigen::Vector4d(1, 0, 0, 0));
+  const double norm = v.norm();
+  if (std::abs(norm - 1.0) > 1e-6)
+    fail(o.path(key), "must be a unit quaternion (w, x, y, z) within 1e-6, got |q| = " + num(norm));
+  return Quat(v[0], v[1], v[2], v[3]).normalized();
+}
+
+// Coulomb coefficients: staticFriction >= kineticFriction >= 0.
+void friction(const Object& o, double& mus, double& muk) {
+  mus = o.number("staticFriction", defaults::kStaticFriction);
+  muk = o.number("kineticFriction", std::min(defaults::kKineticFriction, mus));
+  if (muk < 0.0) fail(o.path("kineticFriction"), "must be >= 0, got " + num(muk));
+  if (mus < muk)
+    fail(o.path("staticFriction"),
+         "must be >= kineticFriction (" + num(muk) + "), got " + num(mus));
+}
+
+Shape readShape(const json& j, const std::string& path) {
+  if (!j.is_object() || !j.contains("type")) fail(path + ".type", "is required");
+  if (!j["type"].is_string()) fail(path + ".type", "must be a string");
+  const std::string type = j["type"].get<std::string>();
+  Shape s;
+  if (type == "sphere") {
+    Object o(j, path, {"type", "radius"});
+    s.type = ShapeType::Sphere;
+    s.radius = positive(o, "radius");
+  } else if (type == "box") {
+    Object o(j, path, {"type", "size"});
+    s.type = ShapeType::Box;
+    if (!o.has("size")) fail(o.path("size"), "is required");
+    s.size = o.vec3("size", Vec3::Zero());
+    for (int i = 0; i < 3; ++i)
+      if (!(s.size[i] > 0.0))
+        fail(o.path("size") + "[" + std::to_string(i) + "]", "must be > 0, got " + num(s.size[i]));
+  } else if (type == "cylinder" || type == "capsule") {
+    Object o(j, path, {"type", "radius", "length"});
+    s.type = type == "cylinder" ? ShapeType::Cylinder : ShapeType::Capsule;
+    s.radius = positive(o, "radius");
+    s.length = o.number("length");
+    if (s.type == ShapeType::Cylinder && !(s.length > 0.0))
+      fail(o.path("length"), "must be > 0, got " + num(s.length));
+    if (s.type == ShapeType::Capsule && s.length < 0.0)
+      fail(o.path("length"), "must be >= 0, got " + num(s.length));
+  } else {
+    fail(path + ".type", "must be one of sphere, box, cylinder, capsule, got \"" + type + "\"");
+  }
+  return s;
+}
+
+// A given inertia: symmetric, positive definite, principal moments obeying the
+// triangle inequality (no principal moment exceeds the sum of the other two, which
+// every real mass distribution satisfies). Equality, the flat-lamina limit, is allowed.
+Mat3 readInertia(const json& j, const std::string& path) {
+  if (!j.is_array() || j.size() != 3) fail(path, "must be a 3x3 array of numbers");
+  Mat3 I;
+  for (int r = 0; r < 3; ++r) {
+    const Eigen::VectorXd row = Object::toVector(j[r], path + "[" + std::to_string(r) + "]", 3);
+    I.row(r) = row.transpose();
+  }
+  const double scale = I.cwiseAbs().maxCoeff();
+  if ((I - I.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale)
+    fail(path, "must be symmetric within 1e-9 relative");
+  const Vec3 m = Eigen::SelfAdjointEigenSolver<Mat3>(I).eigenvalues();  // ascending
+  if (!(m[0] > 0.0))
+    fail(path, "must be positive definite, smallest principal moment is " + num(m[0]));
+  if (m[2] > (m[0] + m[1]) * (1.0 + 1e-9))
+    fail(path, "principal moments must satisfy the triangle inequality: largest " + num(m[2]) +
+                   " > sum of the others " + num(m[0] + m[1]));
+  return 0.5 * (I + I.transpose());
+}
+
+BodyConstants readBody(const json& j, const std::string& path) {
+  Object o(j, path,
+           {"name", "shape", "mass", "inertia", "position", "orientation", "velocity",
+            "angularVelocity", "restitution", "staticFriction", "kineticFriction"});
+  BodyConstants b;
+  b.name = identifier(o, "name");
+  if (!o.has("shape")) fail(o.path("shape"), "is required");
+  b.shape = readShape(o.at("shape"), o.path("shape"));
+  setMass(b, positive(o, "mass"));
+  if (o.has("inertia")) setInertia(b, readInertia(o.at("inertia"), o.path("inertia")));
+  b.start.position = o.vec3("position", Vec3::Zero());
+  b.start.orientation = unitQuaternion(o, "orientation");
+  b.start.velocity = o.vec3("velocity", Vec3::Zero());
+  b.start.angularVelocity = o.vec3("angularVelocity", Vec3::Zero());
+  b.restitution = inRange(o, "restitution", defaults::kRestitution, 0.0, 1.0);
+  friction(o, b.staticFriction, b.kineticFriction);
+  return b;
+}
+
+void readBox(const Object& o, Vec3& min, Vec3& max) {
+  if (!o.has("min")) fail(o.path("min"), "is required");
+  if (!o.has("max")) fail(o.path("max"), "is required");
+  min = o.vec3("min", Vec3::Zero());
+  max = o.vec3("max", Vec3::Zero());
+  for (int i = 0; i < 3; ++i)
+    if (!(max[i] > min[i]))
+      fail(o.path("max") + "[" + std::to_string(i) + "]",
+           "must be > min[" + std::to_string(i) + "] (" + num(min[i]) + "), got " + num(max[i]));
+}
+
+SurfaceSpec readSurface(const json& j, const std::string& path) {
+  Object o(j, path, {"name", "min", "max", "orientation", "staticFriction", "kineticFriction",
+                     "restitution"});
+  SurfaceSpec s;
+  s.name = identifier(o, "name");
+  readBox(o, s.min, s.max);
+  s.orientation = unitQuaternion(o, "orientation");
+  friction(o, s.staticFriction, s.kineticFriction);
+  s.restitution = inRange(o, "restitution", defaults::kRestitution, 0.0, 1.0);
+  return s;
+}
+
+MediumSpec readMedium(const json& j, const std::string& path) {
+  Object o(j, path, {"name", "type", "min", "max", "density", "viscosity"});
+  MediumSpec m;
+  m.name = identifier(o, "name");
+  const std::string type = o.string("type", "water");
+  double rho = 0.0, mu = 0.0;
+  if (type == "air") {
+    m.type = FluidType::Air;
+    rho = defaults::kAirDensity;
+    mu = defaults::kAirViscosity;
+  } else if (type == "water") {
+    m.type = FluidType::Water;
+    rho = defaults::kWaterDensity;
+    mu = defaults::kWaterViscosity;
+  } else if (type == "custom") {
+    m.type = FluidType::Custom;
+    if (!o.has("density")) fail(o.path("density"), "is required for a custom medium");
+    if (!o.has("viscosity")) fail(o.path("viscosity"), "is required for a custom medium");
+  } else {
+    fail(o.path("type"), "must be one of air, water, custom, got \"" + type + "\"");
+  }
+  readBox(o, m.min, m.max);
+  m.density = positive(o, "density", &rho);
+  m.viscosity = o.number("viscosity", mu);
+  if (m.viscosity < 0.0) fail(o.path("viscosity"), "must be >= 0, got " + num(m.viscosity));
+  return m;
+}
+
+template <class T, class Read>
+std::vector<T> readList(const Object& o, const char* key, bool required, Read read) {
+  std::vector<T> out;
+  if (!o.has(key)) {
+    if (required) fail(o.path(key), "is required");
+    return out;
+  }
+  const json& list = o.at(key);
+  if (!list.is_array()) fail(o.path(key), "must be an array");
+  std::set<std::string> names;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string path = o.path(key) + "[" + std::to_string(i) + "]";
+    out.push_back(read(list[i], path));
+    if (!names.insert(out.back().name).second)
+      fail(path + ".name", "must be unique in " + std::string(key) + ", \"" + out.back().name +
+                               "\" is used twice");
+  }
+  return out;
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& text) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw SceneError(std::string("scene: not valid JSON: ") + e.what());
+  }
+  Object o(j, "", {"name", "gravity", "solver", "bodies", "surfaces", "media"});
+  Scene scene;
+  WorldModel& m = scene.model;
+  m.name = identifier(o, "name", "scene");
+  m.gravity = o.vec3("gravity", Vec3(0.0, 0.0, -9.81));
+  if (o.has("solver")) {
+    Object s(o.at("solver"), "solver", {"method", "step"});
+    const std::string method = s.string("method", "rk4");
+    const auto chosen = methodFromName(method);
+    if (!chosen) {
+      std::string list;
+      for (const MethodInfo& mi : methods()) list += std::string(list.empty() ? "" : ", ") + mi.name;
+      fail("solver.method", "must be one of " + list + ", got \"" + method + "\"");
+    }
+    m.method = *chosen;
+    const double step = defaults::kSolverStep;
+    m.maxStep = positive(s, "step", &step);
+  }
+  m.bodies = readList<BodyConstants>(o, "bodies", true, readBody);
+  if (m.bodies.empty()) fail("bodies", "must hold at least one body");
+  scene.surfaces = readList<SurfaceSpec>(o, "surfaces", false, readSurface);
+  scene.media = readList<MediumSpec>(o, "media", false, readMedium);
+  scene.canonicalJson = j.dump();
+  // The world's surfaces and media are read and checked above; their physics is not in
+  // this version yet, and a scene must not build an FMU that silently ignores them.
+  if (!scene.surfaces.empty()) fail("surfaces", "are not simulated by this version yet; remove them");
+  if (!scene.media.empty()) fail("media", "are not simulated by this version yet; remove them");
+  return scene;
+}
+
+Scene loadSceneFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError("scene: cannot open \"" + path + "\"");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseScene(text.str());
+}
+
+}  // namespace rigid

@@ -1,0 +1,65 @@
+// Scene files (JSON, see INTERFACE.md): read, check every rule, and turn into the
+// world's constants. A broken rule throws SceneError whose message names the field
+// and the limit, e.g. "bodies[2].mass: must be > 0, got -1".
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "world.h"
+
+namespace rigid {
+
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A surface of the seed paper: a box given by its corners, optionally turned about
+// its centre; bodies rest and slide on it.
+struct SurfaceSpec {
+  std::string name;
+  Vec3 min = Vec3::Zero();  // m, corners in the surface's own (unturned) frame
+  Vec3 max = Vec3::Zero();
+  Quat orientation = Quat::Identity();  // turns the box about its centre
+  double staticFriction = 0.6;
+  double kineticFriction = 0.4;
+  double restitution = 0.5;
+};
+
+enum class FluidType { Air, Water, Custom };
+
+// A medium of the seed paper: a box-shaped volume of fluid.
+struct MediumSpec {
+  std::string name;
+  FluidType type = FluidType::Water;
+  Vec3 min = Vec3::Zero();  // m
+  Vec3 max = Vec3::Zero();
+  double density = 0.0;     // kg/m^3
+  double viscosity = 0.0;   // Pa s
+};
+
+struct Scene {
+  WorldModel model;                  // name, gravity, solver, bodies
+  std::vector<SurfaceSpec> surfaces;
+  std::vector<MediumSpec> media;
+  std::string canonicalJson;         // the parsed file, keys sorted: identifies the scene
+};
+
+Scene parseScene(const std::string& jsonText);
+Scene loadSceneFile(const std::string& path);
+
+// Defaults of the scene format, documented in the README.
+namespace defaults {
+constexpr double kSolverStep = 1e-3;       // s
+constexpr double kRestitution = 0.5;
+constexpr double kStaticFriction = 0.6;
+constexpr double kKineticFriction = 0.4;
+constexpr double kAirDensity = 1.204;      // kg/m^3, 20 C, 1 atm
+constexpr double kAirViscosity = 1.813e-5; // Pa s
+constexpr double kWaterDensity = 998.2;    // kg/m^3, 20 C
+constexpr double kWaterViscosity = 1.002e-3;  // Pa s
+}  // namespace defaults
+
+}  // namespace rigid

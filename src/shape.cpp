@@ -1,0 +1,66 @@
+#include "shape.h"
+
+#include <cmath>
+
+namespace rigid {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+const char* shapeTypeName(ShapeType type) {
+  switch (type) {
+    case ShapeType::Sphere: return "sphere";
+    case ShapeType::Box: return "box";
+    case ShapeType::Cylinder: return "cylinder";
+    case ShapeType::Capsule: return "capsule";
+  }
+  return "?";
+}
+
+double shapeVolume(const Shape& s) {
+  const double r = s.radius;
+  switch (s.type) {
+    case ShapeType::Sphere: return 4.0 / 3.0 * kPi * r * r * r;
+    case ShapeType::Box: return s.size.prod();
+    case ShapeType::Cylinder: return kPi * r * r * s.length;
+    case ShapeType::Capsule: return kPi * r * r * s.length + 4.0 / 3.0 * kPi * r * r * r;
+  }
+  return 0.0;
+}
+
+Vec3 solidPrincipalInertia(const Shape& s, double m) {
+  const double r = s.radius;
+  const double l = s.length;
+  switch (s.type) {
+    case ShapeType::Sphere: {
+      const double I = 0.4 * m * r * r;
+      return Vec3(I, I, I);
+    }
+    case ShapeType::Box: {
+      const Vec3 sq = s.size.cwiseProduct(s.size);
+      return m / 12.0 * Vec3(sq.y() + sq.z(), sq.x() + sq.z(), sq.x() + sq.y());
+    }
+    case ShapeType::Cylinder: {
+      const double Ixx = m * (3.0 * r * r + l * l) / 12.0;
+      return Vec3(Ixx, Ixx, 0.5 * m * r * r);
+    }
+    case ShapeType::Capsule: {
+      // Mass splits by volume between the cylinder and the two hemispherical caps.
+      // A cap's centroid lies 3r/8 from its flat face, i.e. l/2 + 3r/8 from the centre;
+      // about a transverse axis through the flat face a cap has 2/5 m_cap r^2, so by the
+      // parallel-axis theorem each cap adds m_cap (2r^2/5 + l^2/4 + 3lr/8).
+      const double vCyl = kPi * r * r * l;
+      const double vCap = 2.0 / 3.0 * kPi * r * r * r;
+      const double mCyl = m * vCyl / (vCyl + 2.0 * vCap);
+      const double mCap = m * vCap / (vCyl + 2.0 * vCap);
+      const double Ixx = mCyl * (3.0 * r * r + l * l) / 12.0 +
+                         2.0 * mCap * (0.4 * r * r + 0.25 * l * l + 0.375 * l * r);
+      const double Izz = 0.5 * mCyl * r * r + 2.0 * 0.4 * mCap * r * r;
+      return Vec3(Ixx, Ixx, Izz);
+    }
+  }
+  return Vec3::Zero();
+}
+
+}  // namespace rigid

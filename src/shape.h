@@ -1,0 +1,26 @@
+// Body shapes of the scene format and the mass properties of their solids.
+#pragma once
+
+#include "math_types.h"
+
+namespace rigid {
+
+enum class ShapeType { Sphere, Box, Cylinder, Capsule };
+
+struct Shape {
+  ShapeType type = ShapeType::Sphere;
+  double radius = 0.0;       // m: sphere, cylinder, capsule
+  Vec3 size = Vec3::Zero();  // m: box, full edge lengths (lx, ly, lz)
+  double length = 0.0;       // m: cylinder length; capsule's cylinder part. Axis = body z.
+};
+
+const char* shapeTypeName(ShapeType type);
+
+// Volume of the solid, m^3.
+double shapeVolume(const Shape& shape);
+
+// Principal moments (kg m^2) of the homogeneous solid of this mass about its centre of
+// mass, in the body frame, whose axes are the shape's symmetry axes.
+Vec3 solidPrincipalInertia(const Shape& shape, double mass);
+
+}  // namespace rigid

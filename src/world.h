@@ -1,0 +1,56 @@
+// The world: its constants (WorldModel) and everything that changes in a run
+// (WorldData), kept apart as MuJoCo keeps mjModel and mjData.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "body.h"
+#include "integrator.h"
+
+namespace rigid {
+
+// Constants of one scene. Parameters of the FMU (mass, gravity, method, ...) change
+// them only between runs or, for tunable ones, between communication steps.
+struct WorldModel {
+  std::string name;
+  Vec3 gravity = Vec3(0.0, 0.0, -9.81);  // m/s^2
+  Method method = Method::RK4;
+  double maxStep = 1e-3;                 // s, largest internal step
+  std::vector<BodyConstants> bodies;
+};
+
+// Work buffers of the integrators, sized once so that a step allocates nothing.
+struct Scratch {
+  std::vector<BodyState> stage;   // Y + c h k, a Runge-Kutta stage
+  std::vector<BodyState> next;    // Y(t + h) before it is accepted
+  std::vector<BodyDerivative> k[4];
+};
+
+// Everything that changes during a run.
+struct WorldData {
+  std::vector<BodyState> Y;    // state vectors
+  std::vector<BodyInput> input;  // external loads (FMU inputs)
+  std::vector<BodyAux> aux;    // auxiliaries of Y, valid after initialise() and step()
+  Scratch scratch;
+};
+
+// Data for the start of a run: every body at its start values, inputs zero.
+WorldData initialData(const WorldModel& model);
+
+// Refreshes the auxiliaries of the current Y (for outputs).
+void refreshAuxiliaries(const WorldModel& model, WorldData& data);
+
+struct StepResult {
+  bool ok = true;
+  int body = -1;  // when !ok: first body whose new state is not finite
+};
+
+// Advances the world by one internal step h (s). On a non-finite result the step is
+// not taken: Y stays as it was and the result names the body.
+StepResult step(const WorldModel& model, WorldData& data, double h);
+
+// Total energy: kinetic plus potential in the gravity field, J.
+double totalEnergy(const WorldModel& model, const WorldData& data);
+
+}  // namespace rigid

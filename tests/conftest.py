@@ -1,0 +1,36 @@
+"""Shared fixtures: FMUs are built once per scene content and shared between tests."""
+import hashlib
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+BUILD = pathlib.Path(os.environ.get("RIGIDFMU_BUILD", ROOT / "build"))
+FMU_DIR = BUILD / "test-fmus"
+# FMUs are shared between the tests of one session, never across sessions: the code
+# they were built from may have changed since.
+shutil.rmtree(FMU_DIR, ignore_errors=True)
+
+
+def build_fmu(scene: dict) -> pathlib.Path:
+    """The FMU of a scene (a dict in the scene format), built once per content."""
+    text = json.dumps(scene, indent=1, sort_keys=True)
+    key = hashlib.sha256(text.encode()).hexdigest()[:16]
+    fmu = FMU_DIR / f"{scene.get('name', 'scene')}-{key}.fmu"
+    if not fmu.exists():
+        FMU_DIR.mkdir(parents=True, exist_ok=True)
+        scene_file = FMU_DIR / f"{scene.get('name', 'scene')}-{key}.json"
+        scene_file.write_text(text)
+        env = dict(os.environ, RIGIDFMU_SKIP_SETUP="1")
+        subprocess.run([str(ROOT / "scripts" / "build_fmu.sh"), str(scene_file), str(fmu)],
+                       check=True, env=env, stdout=subprocess.DEVNULL)
+    return fmu
+
+
+@pytest.fixture(scope="session")
+def fmu_of():
+    return build_fmu

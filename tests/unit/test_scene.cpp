@@ -1,0 +1,322 @@
+// rigid::parseScene: one test per rule of INTERFACE.md. Each asserts that a
+// SceneError is thrown and that its message names the field and the limit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "scene.h"
+
+namespace {
+
+// A scene with one valid body; `bodyExtra` is appended inside the body object,
+// `topExtra` inside the top-level object.
+std::string sceneWith(const std::string& bodyExtra = "", const std::string& topExtra = "",
+                      const std::string& shape = R"({"type": "sphere", "radius": 0.1})") {
+  return R"({"name": "S", )" + topExtra + R"("bodies": [{"name": "b", "shape": )" + shape +
+         R"(, "mass": 1.0)" + bodyExtra + "}]}";
+}
+
+// Message of the SceneError that parsing `text` throws; records a failure if none.
+// Any other exception type escapes and fails the test.
+std::string errorOf(const std::string& text) {
+  try {
+    rigid::parseScene(text);
+  } catch (const rigid::SceneError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no SceneError for scene:\n" << text;
+  return "";
+}
+
+::testing::AssertionResult contains(const std::string& message, const std::string& part) {
+  if (message.find(part) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "message \"" << message << "\" lacks \"" << part << "\"";
+}
+
+#define EXPECT_SCENE_ERROR(text, ...)                                 \
+  do {                                                                \
+    const std::string msg_ = errorOf(text);                           \
+    for (const char* part_ : {__VA_ARGS__}) EXPECT_TRUE(contains(msg_, part_)); \
+  } while (0)
+
+const char* const kSurface =
+    R"({"name": "floor", "min": [-5, -5, -1], "max": [5, 5, 0]})";
+const char* const kMedium = R"({"name": "pool", "type": "water", "min": [-1, -1, -2], "max": [1, 1, -1]})";
+
+}  // namespace
+
+// The base scene of the negative tests is itself valid.
+TEST(Scene, BaseSceneParses) {
+  EXPECT_NO_THROW(rigid::parseScene(sceneWith()));
+}
+
+TEST(Scene, MinimalSceneHasDocumentedDefaults) {
+  const rigid::Scene s = rigid::parseScene(
+      R"({"name": "Minimal", "bodies": [{"name": "ball", "shape": {"type": "sphere", "radius": 0.1}, "mass": 2}]})");
+  EXPECT_EQ(s.model.name, "Minimal");
+  EXPECT_EQ(s.model.gravity, rigid::Vec3(0.0, 0.0, -9.81));
+  EXPECT_EQ(s.model.method, rigid::Method::RK4);
+  EXPECT_EQ(s.model.maxStep, 1e-3);
+  ASSERT_EQ(s.model.bodies.size(), 1u);
+  const rigid::BodyConstants& b = s.model.bodies[0];
+  EXPECT_EQ(b.name, "ball");
+  EXPECT_EQ(b.mass, 2.0);
+  EXPECT_EQ(b.restitution, 0.5);
+  EXPECT_EQ(b.staticFriction, 0.6);
+  EXPECT_EQ(b.kineticFriction, 0.4);
+  EXPECT_EQ(b.start.orientation.w(), 1.0);
+  EXPECT_EQ(b.start.orientation.x(), 0.0);
+  EXPECT_EQ(b.start.orientation.y(), 0.0);
+  EXPECT_EQ(b.start.orientation.z(), 0.0);
+  EXPECT_EQ(b.start.position, rigid::Vec3::Zero());
+  EXPECT_EQ(b.start.velocity, rigid::Vec3::Zero());
+  EXPECT_EQ(b.start.angularVelocity, rigid::Vec3::Zero());
+  EXPECT_TRUE(b.inertiaFromShape);
+  const double I = 0.4 * 2.0 * 0.1 * 0.1;  // solid sphere
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(b.Ibody(i, i), I, 1e-15);
+  EXPECT_TRUE(s.surfaces.empty());
+  EXPECT_TRUE(s.media.empty());
+}
+
+TEST(Scene, FullBodyIsRead) {
+  const rigid::Scene s = rigid::parseScene(sceneWith(
+      R"(, "position": [1, 2, 3], "velocity": [4, 5, 6], "angularVelocity": [7, 8, 9],
+         "restitution": 0.8, "staticFriction": 0.5, "kineticFriction": 0.3)",
+      R"("gravity": [0, -1.62, 0], "solver": {"method": "euler", "step": 0.002}, )"));
+  EXPECT_EQ(s.model.gravity, rigid::Vec3(0.0, -1.62, 0.0));
+  EXPECT_EQ(s.model.method, rigid::Method::Euler);
+  EXPECT_EQ(s.model.maxStep, 0.002);
+  const rigid::BodyConstants& b = s.model.bodies[0];
+  EXPECT_EQ(b.start.position, rigid::Vec3(1, 2, 3));
+  EXPECT_EQ(b.start.velocity, rigid::Vec3(4, 5, 6));
+  EXPECT_EQ(b.start.angularVelocity, rigid::Vec3(7, 8, 9));
+  EXPECT_EQ(b.restitution, 0.8);
+  EXPECT_EQ(b.staticFriction, 0.5);
+  EXPECT_EQ(b.kineticFriction, 0.3);
+}
+
+TEST(Scene, NearUnitOrientationIsNormalised) {
+  const double k = 1.0 + 8e-7;  // |q| off by 8e-7 < 1e-6
+  const std::string q = "[" + std::to_string(0.6 * k) + ", " + std::to_string(0.8 * k) + ", 0, 0]";
+  const rigid::Scene s = rigid::parseScene(sceneWith(", \"orientation\": " + q));
+  const rigid::Quat& o = s.model.bodies[0].start.orientation;
+  EXPECT_NEAR(o.norm(), 1.0, 1e-15);
+  EXPECT_NEAR(o.w(), 0.6, 1e-12);
+  EXPECT_NEAR(o.x(), 0.8, 1e-12);
+  EXPECT_EQ(o.y(), 0.0);
+  EXPECT_EQ(o.z(), 0.0);
+}
+
+TEST(Scene, NotValidJson) {
+  EXPECT_SCENE_ERROR(R"({"name": "S", "bodies": [)", "scene: not valid JSON");
+}
+
+TEST(Scene, TopLevelNotAnObject) {
+  EXPECT_SCENE_ERROR("[1, 2, 3]", "scene: must be a JSON object");
+  EXPECT_SCENE_ERROR("42", "scene: must be a JSON object");
+}
+
+TEST(Scene, UnknownTopLevelField) {
+  EXPECT_SCENE_ERROR(sceneWith("", R"("gravitee": [0, 0, 0], )"),
+                     "gravitee: unknown field (known: name, gravity, solver, bodies, surfaces, media)");
+}
+
+TEST(Scene, UnknownBodyField) {
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "colour": "red")"), "bodies[0].colour: unknown field (known: ",
+                     "restitution");
+}
+
+TEST(Scene, UnknownSolverField) {
+  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"method": "rk4", "dt": 0.1}, )"),
+                     "solver.dt: unknown field (known: method, step)");
+}
+
+TEST(Scene, NameNotIdentifier) {
+  EXPECT_SCENE_ERROR(R"({"name": "2fast", "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1}]})",
+                     "name: must be a C identifier ([A-Za-z_][A-Za-z0-9_]*), got \"2fast\"");
+}
+
+TEST(Scene, BodyNameNotIdentifier) {
+  EXPECT_SCENE_ERROR(R"({"name": "S", "bodies": [{"name": "my ball", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1}]})",
+                     "bodies[0].name: must be a C identifier", "got \"my ball\"");
+}
+
+TEST(Scene, GravityNotThreeNumbers) {
+  EXPECT_SCENE_ERROR(sceneWith("", R"("gravity": [0, -9.81], )"),
+                     "gravity: must be an array of 3 numbers");
+  EXPECT_SCENE_ERROR(sceneWith("", R"("gravity": [0, "down", 0], )"), "gravity[1]: must be a number");
+}
+
+TEST(Scene, SolverMethodUnknown) {
+  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"method": "rk5"}, )"),
+                     "solver.method: must be one of euler, rk4, got \"rk5\"");
+}
+
+TEST(Scene, SolverStepNotPositive) {
+  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"step": 0}, )"), "solver.step: must be > 0, got 0");
+  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"step": -0.001}, )"),
+                     "solver.step: must be > 0, got -0.001");
+}
+
+TEST(Scene, BodiesMissing) {
+  EXPECT_SCENE_ERROR(R"({"name": "S"})", "bodies: is required");
+}
+
+TEST(Scene, BodiesEmpty) {
+  EXPECT_SCENE_ERROR(R"({"name": "S", "bodies": []})", "bodies: must hold at least one body");
+}
+
+TEST(Scene, BodyNameMissing) {
+  EXPECT_SCENE_ERROR(R"({"name": "S", "bodies": [{"shape": {"type": "sphere", "radius": 0.1}, "mass": 1}]})",
+                     "bodies[0].name: is required");
+}
+
+TEST(Scene, DuplicateBodyName) {
+  EXPECT_SCENE_ERROR(
+      R"({"name": "S", "bodies": [
+           {"name": "b", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1},
+           {"name": "c", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1},
+           {"name": "b", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1}]})",
+      "bodies[2].name: must be unique in bodies, \"b\" is used twice");
+}
+
+TEST(Scene, ShapeTypeUnknown) {
+  EXPECT_SCENE_ERROR(sceneWith("", "", R"({"type": "cone", "radius": 0.1})"),
+                     "bodies[0].shape.type: must be one of sphere, box, cylinder, capsule, got \"cone\"");
+}
+
+TEST(Scene, SphereRadiusNotPositive) {
+  EXPECT_SCENE_ERROR(sceneWith("", "", R"({"type": "sphere", "radius": 0})"),
+                     "bodies[0].shape.radius: must be > 0, got 0");
+  EXPECT_SCENE_ERROR(sceneWith("", "", R"({"type": "sphere", "radius": -0.5})"),
+                     "bodies[0].shape.radius: must be > 0, got -0.5");
+}
+
+TEST(Scene, BoxSizeComponentNotPositive) {
+  EXPECT_SCENE_ERROR(sceneWith("", "", R"({"type": "box", "size": [0.1, -0.2, 0.3]})"),
+                     "bodies[0].shape.size[1]: must be > 0, got -0.2");
+  EXPECT_SCENE_ERROR(sceneWith("", "", R"({"type": "box", "size": [0.1, 0.2, 0]})"),
+                     "bodies[0].shape.size[2]: must be > 0, got 0");
+}
+
+TEST(Scene, CylinderLengthNotPositive) {
+  EXPECT_SCENE_ERROR(sceneWith("", "", R"({"type": "cylinder", "radius": 0.1, "length": 0})"),
+                     "bodies[0].shape.length: must be > 0, got 0");
+}
+
+TEST(Scene, CapsuleLengthNegative) {
+  EXPECT_SCENE_ERROR(sceneWith("", "", R"({"type": "capsule", "radius": 0.1, "length": -0.1})"),
+                     "bodies[0].shape.length: must be >= 0, got -0.1");
+  // Length 0 is the limit: a sphere-shaped capsule is accepted.
+  EXPECT_NO_THROW(rigid::parseScene(sceneWith("", "", R"({"type": "capsule", "radius": 0.1, "length": 0})")));
+}
+
+TEST(Scene, MassMissing) {
+  EXPECT_SCENE_ERROR(R"({"name": "S", "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.1}}]})",
+                     "bodies[0].mass: is required");
+}
+
+TEST(Scene, MassNotPositive) {
+  EXPECT_SCENE_ERROR(R"({"name": "S", "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.1}, "mass": -1}]})",
+                     "bodies[0].mass: must be > 0, got -1");
+  EXPECT_SCENE_ERROR(R"({"name": "S", "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.1}, "mass": 0}]})",
+                     "bodies[0].mass: must be > 0, got 0");
+}
+
+TEST(Scene, InertiaNotSymmetric) {
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "inertia": [[1, 0.1, 0], [0, 1, 0], [0, 0, 1]])"),
+                     "bodies[0].inertia: must be symmetric within 1e-9 relative");
+}
+
+TEST(Scene, InertiaNotPositiveDefinite) {
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "inertia": [[-1, 0, 0], [0, 2, 0], [0, 0, 2]])"),
+                     "bodies[0].inertia: must be positive definite, smallest principal moment is -1");
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "inertia": [[0, 0, 0], [0, 1, 0], [0, 0, 1]])"),
+                     "bodies[0].inertia: must be positive definite, smallest principal moment is 0");
+}
+
+TEST(Scene, InertiaViolatesTriangleInequality) {
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "inertia": [[1, 0, 0], [0, 1, 0], [0, 0, 2.5]])"),
+                     "bodies[0].inertia: principal moments must satisfy the triangle inequality: "
+                     "largest 2.5 > sum of the others 2");
+}
+
+TEST(Scene, InertiaAtTriangleLimitIsAccepted) {
+  const rigid::Scene s = rigid::parseScene(sceneWith(R"(, "inertia": [[1, 0, 0], [0, 1, 0], [0, 0, 2]])"));
+  const rigid::BodyConstants& b = s.model.bodies[0];
+  EXPECT_FALSE(b.inertiaFromShape);
+  rigid::Mat3 expected = rigid::Vec3(1, 1, 2).asDiagonal();
+  EXPECT_EQ(b.Ibody, expected);
+  rigid::Mat3 expectedInv = rigid::Vec3(1, 1, 0.5).asDiagonal();
+  EXPECT_LT((b.IbodyInv - expectedInv).cwiseAbs().maxCoeff(), 1e-14);
+}
+
+TEST(Scene, OrientationNotUnit) {
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "orientation": [1, 0, 0, 0.01])"),
+                     "bodies[0].orientation: must be a unit quaternion (w, x, y, z) within 1e-6, got |q| = 1.0000499987");
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "orientation": [0, 0, 0, 0])"),
+                     "bodies[0].orientation: must be a unit quaternion", "got |q| = 0");
+}
+
+TEST(Scene, RestitutionOutsideUnitInterval) {
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "restitution": 1.5)"), "bodies[0].restitution: must be in [0, 1], got 1.5");
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "restitution": -0.1)"), "bodies[0].restitution: must be in [0, 1], got -0.1");
+  EXPECT_NO_THROW(rigid::parseScene(sceneWith(R"(, "restitution": 1)")));
+  EXPECT_NO_THROW(rigid::parseScene(sceneWith(R"(, "restitution": 0)")));
+}
+
+TEST(Scene, KineticFrictionNegative) {
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "kineticFriction": -0.1)"), "bodies[0].kineticFriction: must be >= 0, got -0.1");
+}
+
+TEST(Scene, StaticFrictionBelowKinetic) {
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "staticFriction": 0.3, "kineticFriction": 0.5)"),
+                     "bodies[0].staticFriction: must be >= kineticFriction (0.5), got 0.3");
+  // Equality is the limit and is accepted.
+  EXPECT_NO_THROW(rigid::parseScene(sceneWith(R"(, "staticFriction": 0.5, "kineticFriction": 0.5)")));
+}
+
+TEST(Scene, SurfaceMinNotBelowMax) {
+  EXPECT_SCENE_ERROR(sceneWith("", R"("surfaces": [{"name": "floor", "min": [-5, -5, 0], "max": [5, 5, 0]}], )"),
+                     "surfaces[0].max[2]: must be > min[2] (0), got 0");
+  EXPECT_SCENE_ERROR(sceneWith("", R"("surfaces": [{"name": "floor", "min": [1, -5, -1], "max": [-1, 5, 0]}], )"),
+                     "surfaces[0].max[0]: must be > min[0] (1), got -1");
+}
+
+TEST(Scene, DuplicateSurfaceName) {
+  EXPECT_SCENE_ERROR(sceneWith("", std::string(R"("surfaces": [)") + kSurface + ", " + kSurface + "], "),
+                     "surfaces[1].name: must be unique in surfaces, \"floor\" is used twice");
+}
+
+TEST(Scene, MediumTypeUnknown) {
+  EXPECT_SCENE_ERROR(sceneWith("", R"("media": [{"name": "tank", "type": "oil", "min": [-1, -1, -1], "max": [1, 1, 1]}], )"),
+                     "media[0].type: must be one of air, water, custom, got \"oil\"");
+}
+
+TEST(Scene, MediumDensityNotPositive) {
+  EXPECT_SCENE_ERROR(sceneWith("", R"("media": [{"name": "tank", "type": "water", "min": [-1, -1, -1], "max": [1, 1, 1], "density": 0}], )"),
+                     "media[0].density: must be > 0, got 0");
+  EXPECT_SCENE_ERROR(sceneWith("", R"("media": [{"name": "tank", "type": "custom", "min": [-1, -1, -1], "max": [1, 1, 1], "density": -5, "viscosity": 1}], )"),
+                     "media[0].density: must be > 0, got -5");
+}
+
+TEST(Scene, MediumViscosityNegative) {
+  EXPECT_SCENE_ERROR(sceneWith("", R"("media": [{"name": "tank", "type": "air", "min": [-1, -1, -1], "max": [1, 1, 1], "viscosity": -0.001}], )"),
+                     "media[0].viscosity: must be >= 0, got -0.001");
+}
+
+TEST(Scene, CustomMediumWithoutDensity) {
+  EXPECT_SCENE_ERROR(sceneWith("", R"("media": [{"name": "tank", "type": "custom", "min": [-1, -1, -1], "max": [1, 1, 1], "viscosity": 0.1}], )"),
+                     "media[0].density: is required for a custom medium");
+}
+
+TEST(Scene, ValidSurfacesAreRefusedAsNotSimulatedYet) {
+  EXPECT_SCENE_ERROR(sceneWith("", std::string(R"("surfaces": [)") + kSurface + "], "),
+                     "surfaces: are not simulated by this version yet");
+}
+
+TEST(Scene, ValidMediaAreRefusedAsNotSimulatedYet) {
+  EXPECT_SCENE_ERROR(sceneWith("", std::string(R"("media": [)") + kMedium + "], "),
+                     "media: are not simulated by this version yet");
+}

@@ -174,8 +174,10 @@ std::string writeValue(const Variable& v, double value, WorldModel& model, World
       model.gravity[c] = value;
       return "";
     case Quantity::SolverMethod: {
-      const auto method = rigid::methodFromValue(static_cast<int>(value));
-      if (!method || value != std::floor(value)) {
+      // Range and wholeness first: casting 1e10 to int would be undefined.
+      const bool whole = value == std::floor(value) && std::abs(value) < 1e6;
+      const auto method = whole ? rigid::methodFromValue(static_cast<int>(value)) : std::nullopt;
+      if (!method) {
         std::string list;
         for (const rigid::MethodInfo& m : rigid::methods())
           list += std::string(list.empty() ? "" : ", ") + std::to_string(static_cast<int>(m.method)) +

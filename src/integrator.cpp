@@ -60,14 +60,16 @@ void rk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>
   evaluateDerivative(m, d.input, stage, d.aux, k3);
   addScaled(d.Y, h, k3, stage);
   evaluateDerivative(m, d.input, stage, d.aux, k4);
-  const double w = h / 6.0;
+  // Each k is scaled before the sum, so that derivatives near the largest double do
+  // not overflow in k1 + 2 k2 + 2 k3 + k4 when the step itself is finite.
+  const double w1 = h / 6.0, w2 = h / 3.0;
   for (size_t i = 0; i < d.Y.size(); ++i) {
     const BodyState& y = d.Y[i];
     BodyState& out = next[i];
-    out.X = y.X + w * (k1[i].dX + 2.0 * (k2[i].dX + k3[i].dX) + k4[i].dX);
-    out.q.coeffs() = y.q.coeffs() + w * (k1[i].dq + 2.0 * (k2[i].dq + k3[i].dq) + k4[i].dq);
-    out.P = y.P + w * (k1[i].dP + 2.0 * (k2[i].dP + k3[i].dP) + k4[i].dP);
-    out.L = y.L + w * (k1[i].dL + 2.0 * (k2[i].dL + k3[i].dL) + k4[i].dL);
+    out.X = y.X + (w1 * k1[i].dX + w2 * k2[i].dX + w2 * k3[i].dX + w1 * k4[i].dX);
+    out.q.coeffs() = y.q.coeffs() + (w1 * k1[i].dq + w2 * k2[i].dq + w2 * k3[i].dq + w1 * k4[i].dq);
+    out.P = y.P + (w1 * k1[i].dP + w2 * k2[i].dP + w2 * k3[i].dP + w1 * k4[i].dP);
+    out.L = y.L + (w1 * k1[i].dL + w2 * k2[i].dL + w2 * k3[i].dL + w1 * k4[i].dL);
   }
 }
 

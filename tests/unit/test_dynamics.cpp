@@ -281,6 +281,21 @@ TEST(Dynamics, OverflowIsRefusedWithBodyIndexAndStateUnchanged) {
   }
 }
 
+// A derivative near the largest double must not overflow inside the RK4 combination
+// when the step's result is finite: 1e308 N on 1 kg for 1 ms gives P = 1e305 kg m/s.
+TEST(Dynamics, Rk4TakesAFiniteStepUnderAHugeForce) {
+  for (rigid::Method method : {rigid::Method::RK4, rigid::Method::Euler}) {
+    SCOPED_TRACE(rigid::methodName(method));
+    rigid::WorldModel model = world(method, Vec3::Zero());
+    model.bodies.push_back(sphereBody("b", 0.1, 1.0));
+    rigid::WorldData data = rigid::initialData(model);
+    data.input[0].force = Vec3(1e308, 0.0, 0.0);
+    const rigid::StepResult r = rigid::step(model, data, 1e-3);
+    ASSERT_TRUE(r.ok);
+    EXPECT_NEAR(data.Y[0].P.x() / 1e305, 1.0, 1e-12);
+  }
+}
+
 TEST(Dynamics, AuxiliariesFromState) {
   rigid::WorldModel model = world(rigid::Method::RK4, Vec3(0, 0, -9.81));
   rigid::BodyConstants b;

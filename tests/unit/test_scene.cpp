@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "scene.h"
@@ -98,8 +99,9 @@ TEST(Scene, FullBodyIsRead) {
 
 TEST(Scene, NearUnitOrientationIsNormalised) {
   const double k = 1.0 + 8e-7;  // |q| off by 8e-7 < 1e-6
-  const std::string q = "[" + std::to_string(0.6 * k) + ", " + std::to_string(0.8 * k) + ", 0, 0]";
-  const rigid::Scene s = rigid::parseScene(sceneWith(", \"orientation\": " + q));
+  char q[96];
+  std::snprintf(q, sizeof q, "[%.17g, %.17g, 0, 0]", 0.6 * k, 0.8 * k);
+  const rigid::Scene s = rigid::parseScene(sceneWith(std::string(", \"orientation\": ") + q));
   const rigid::Quat& o = s.model.bodies[0].start.orientation;
   EXPECT_NEAR(o.norm(), 1.0, 1e-15);
   EXPECT_NEAR(o.w(), 0.6, 1e-12);

@@ -1,16 +1,18 @@
 #include "dynamics.h"
 
+#include "surface_contact.h"
 #include "world.h"
 
 namespace rigid {
 
 namespace {
 
-// Force stage: gravity at the centre of mass plus the external load.
+// Force stage: the applied forces, then the surfaces, whose support and friction
+// answer the sum of all the others.
 void accumulateForces(const WorldModel& model, const BodyConstants& body, const BodyInput& in,
-                      BodyAux& aux) {
-  aux.F = body.mass * model.gravity + in.force;
-  aux.T = in.torque;
+                      const BodyState& y, BodyAux& aux) {
+  accumulateAppliedForces(model, body, in, y, aux);
+  if (!model.surfaces.empty()) addSurfaceForces(model.surfaces, body, y, aux);
 }
 
 // 1/2 omega q with omega as the pure quaternion (0, omega); omega is in the world
@@ -22,13 +24,20 @@ Eigen::Vector4d spin(const Vec3& omega, const Quat& q) {
 
 }  // namespace
 
+void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
+                             const BodyInput& in, const BodyState& y, BodyAux& aux) {
+  aux.F = body.mass * model.gravity + in.force;
+  aux.T = in.torque;
+  for (const Medium& medium : model.media) addMediumForces(medium, body, y, model.gravity, aux);
+}
+
 void evaluateDerivative(const WorldModel& model, const std::vector<BodyInput>& input,
                         const std::vector<BodyState>& Y, std::vector<BodyAux>& aux,
                         std::vector<BodyDerivative>& dY) {
   for (size_t i = 0; i < Y.size(); ++i) {
     const BodyConstants& body = model.bodies[i];
     computeAuxiliaries(body, Y[i], aux[i]);
-    accumulateForces(model, body, input[i], aux[i]);
+    accumulateForces(model, body, input[i], Y[i], aux[i]);
     dY[i].dX = aux[i].V;
     dY[i].dq = spin(aux[i].omega, Y[i].q);
     dY[i].dP = aux[i].F;

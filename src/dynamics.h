@@ -9,6 +9,11 @@ namespace rigid {
 
 struct WorldModel;
 
+// Every force on one body but the surfaces': gravity, the inputs, the media.
+// Adds to nothing: sets aux.F and aux.T. aux's V, R and omega must be those of y.
+void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
+                             const BodyInput& input, const BodyState& y, BodyAux& aux);
+
 // For every body: auxiliaries of Y, the accumulated force and torque, and
 // dY/dt = (V, 1/2 omega q, F, T). aux is filled as a by-product.
 void evaluateDerivative(const WorldModel& model, const std::vector<BodyInput>& input,

@@ -222,21 +222,22 @@ void readBox(const Object& o, Vec3& min, Vec3& max) {
            "must be > min[" + std::to_string(i) + "] (" + num(min[i]) + "), got " + num(max[i]));
 }
 
-SurfaceSpec readSurface(const json& j, const std::string& path) {
+Surface readSurface(const json& j, const std::string& path) {
   Object o(j, path, {"name", "min", "max", "orientation", "staticFriction", "kineticFriction",
                      "restitution"});
-  SurfaceSpec s;
+  Surface s;
   s.name = identifier(o, "name");
   readBox(o, s.min, s.max);
   s.orientation = unitQuaternion(o, "orientation");
   friction(o, s.staticFriction, s.kineticFriction);
   s.restitution = inRange(o, "restitution", defaults::kRestitution, 0.0, 1.0);
+  finishSurface(s);
   return s;
 }
 
-MediumSpec readMedium(const json& j, const std::string& path) {
+Medium readMedium(const json& j, const std::string& path) {
   Object o(j, path, {"name", "type", "min", "max", "density", "viscosity"});
-  MediumSpec m;
+  Medium m;
   m.name = identifier(o, "name");
   const std::string type = o.string("type", "water");
   double rho = 0.0, mu = 0.0;
@@ -256,7 +257,9 @@ MediumSpec readMedium(const json& j, const std::string& path) {
     fail(o.path("type"), "must be one of air, water, custom, got \"" + type + "\"");
   }
   readBox(o, m.min, m.max);
-  m.density = positive(o, "density", &rho);
+  // Density 0 is allowed: a medium with viscous drag only (no buoyancy, no pressure drag).
+  m.density = o.number("density", rho);
+  if (m.density < 0.0) fail(o.path("density"), "must be >= 0, got " + num(m.density));
   m.viscosity = o.number("viscosity", mu);
   if (m.viscosity < 0.0) fail(o.path("viscosity"), "must be >= 0, got " + num(m.viscosity));
   return m;
@@ -311,13 +314,9 @@ Scene parseScene(const std::string& text) {
   }
   m.bodies = readList<BodyConstants>(o, "bodies", true, readBody);
   if (m.bodies.empty()) fail("bodies", "must hold at least one body");
-  scene.surfaces = readList<SurfaceSpec>(o, "surfaces", false, readSurface);
-  scene.media = readList<MediumSpec>(o, "media", false, readMedium);
+  m.surfaces = readList<Surface>(o, "surfaces", false, readSurface);
+  m.media = readList<Medium>(o, "media", false, readMedium);
   scene.canonicalJson = j.dump();
-  // The world's surfaces and media are read and checked above; their physics is not in
-  // this version yet, and a scene must not build an FMU that silently ignores them.
-  if (!scene.surfaces.empty()) fail("surfaces", "are not simulated by this version yet; remove them");
-  if (!scene.media.empty()) fail("media", "are not simulated by this version yet; remove them");
   return scene;
 }
 

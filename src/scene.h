@@ -16,34 +16,8 @@ class SceneError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// A surface of the seed paper: a box given by its corners, optionally turned about
-// its centre; bodies rest and slide on it.
-struct SurfaceSpec {
-  std::string name;
-  Vec3 min = Vec3::Zero();  // m, corners in the surface's own (unturned) frame
-  Vec3 max = Vec3::Zero();
-  Quat orientation = Quat::Identity();  // turns the box about its centre
-  double staticFriction = 0.6;
-  double kineticFriction = 0.4;
-  double restitution = 0.5;
-};
-
-enum class FluidType { Air, Water, Custom };
-
-// A medium of the seed paper: a box-shaped volume of fluid.
-struct MediumSpec {
-  std::string name;
-  FluidType type = FluidType::Water;
-  Vec3 min = Vec3::Zero();  // m
-  Vec3 max = Vec3::Zero();
-  double density = 0.0;     // kg/m^3
-  double viscosity = 0.0;   // Pa s
-};
-
 struct Scene {
-  WorldModel model;                  // name, gravity, solver, bodies
-  std::vector<SurfaceSpec> surfaces;
-  std::vector<MediumSpec> media;
+  WorldModel model;                  // name, gravity, solver, bodies, surfaces, media
   std::string canonicalJson;         // the parsed file, keys sorted: identifies the scene
 };
 

@@ -2,6 +2,9 @@
 
 #include <utility>
 
+#include "dynamics.h"
+#include "surface_contact.h"
+
 namespace rigid {
 
 WorldData initialData(const WorldModel& model) {
@@ -29,6 +32,20 @@ void normaliseOrientations(std::vector<BodyState>& Y) {
   for (BodyState& y : Y) y.q.normalize();
 }
 
+// Contact response: what happens at an instant rather than over the step. The
+// surfaces need the applied force at the new state to tell whether static friction
+// holds a body that has come to rest.
+void respondToContacts(const WorldModel& model, WorldData& data, double h,
+                       std::vector<BodyState>& after) {
+  if (model.surfaces.empty()) return;
+  for (size_t i = 0; i < after.size(); ++i) {
+    BodyAux& aux = data.aux[i];
+    computeAuxiliaries(model.bodies[i], after[i], aux);
+    accumulateAppliedForces(model, model.bodies[i], data.input[i], after[i], aux);
+    respondToSurfaces(model.surfaces, model.bodies[i], model.gravity, aux.F, h, data.Y[i], after[i]);
+  }
+}
+
 int firstNonFinite(const std::vector<BodyState>& Y) {
   for (size_t i = 0; i < Y.size(); ++i)
     if (!isFinite(Y[i])) return static_cast<int>(i);
@@ -41,6 +58,7 @@ StepResult step(const WorldModel& model, WorldData& data, double h) {
   std::vector<BodyState>& next = data.scratch.next;
   integrate(model, data, h, next);  // auxiliaries -> forces -> derivative, per stage
   normaliseOrientations(next);
+  respondToContacts(model, data, h, next);
   if (const int bad = firstNonFinite(next); bad >= 0) return {false, bad};
   std::swap(data.Y, next);
   refreshAuxiliaries(model, data);

@@ -7,6 +7,8 @@
 
 #include "body.h"
 #include "integrator.h"
+#include "medium.h"
+#include "surface.h"
 
 namespace rigid {
 
@@ -18,6 +20,8 @@ struct WorldModel {
   Method method = Method::RK4;
   double maxStep = 1e-3;                 // s, largest internal step
   std::vector<BodyConstants> bodies;
+  std::vector<Surface> surfaces;
+  std::vector<Medium> media;
 };
 
 // Work buffers of the integrators, sized once so that a step allocates nothing.

@@ -76,8 +76,8 @@ TEST(Scene, MinimalSceneHasDocumentedDefaults) {
   EXPECT_TRUE(b.inertiaFromShape);
   const double I = 0.4 * 2.0 * 0.1 * 0.1;  // solid sphere
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(b.Ibody(i, i), I, 1e-15);
-  EXPECT_TRUE(s.surfaces.empty());
-  EXPECT_TRUE(s.media.empty());
+  EXPECT_TRUE(s.model.surfaces.empty());
+  EXPECT_TRUE(s.model.media.empty());
 }
 
 TEST(Scene, FullBodyIsRead) {
@@ -296,11 +296,16 @@ TEST(Scene, MediumTypeUnknown) {
                      "media[0].type: must be one of air, water, custom, got \"oil\"");
 }
 
-TEST(Scene, MediumDensityNotPositive) {
-  EXPECT_SCENE_ERROR(sceneWith("", R"("media": [{"name": "tank", "type": "water", "min": [-1, -1, -1], "max": [1, 1, 1], "density": 0}], )"),
-                     "media[0].density: must be > 0, got 0");
+TEST(Scene, MediumDensityNegative) {
+  // 0 is allowed (a medium with viscous drag only); below 0 is not.
+  EXPECT_SCENE_ERROR(sceneWith("", R"("media": [{"name": "tank", "type": "water", "min": [-1, -1, -1], "max": [1, 1, 1], "density": -1}], )"),
+                     "media[0].density: must be >= 0, got -1");
   EXPECT_SCENE_ERROR(sceneWith("", R"("media": [{"name": "tank", "type": "custom", "min": [-1, -1, -1], "max": [1, 1, 1], "density": -5, "viscosity": 1}], )"),
-                     "media[0].density: must be > 0, got -5");
+                     "media[0].density: must be >= 0, got -5");
+  const rigid::Scene s = rigid::parseScene(sceneWith("", R"("media": [{"name": "tank", "type": "custom", "min": [-1, -1, -1], "max": [1, 1, 1], "density": 0, "viscosity": 2}], )"));
+  ASSERT_EQ(s.model.media.size(), 1u);
+  EXPECT_EQ(s.model.media[0].density, 0.0);
+  EXPECT_EQ(s.model.media[0].viscosity, 2.0);
 }
 
 TEST(Scene, MediumViscosityNegative) {
@@ -313,12 +318,19 @@ TEST(Scene, CustomMediumWithoutDensity) {
                      "media[0].density: is required for a custom medium");
 }
 
-TEST(Scene, ValidSurfacesAreRefusedAsNotSimulatedYet) {
-  EXPECT_SCENE_ERROR(sceneWith("", std::string(R"("surfaces": [)") + kSurface + "], "),
-                     "surfaces: are not simulated by this version yet");
+TEST(Scene, SurfaceIsRead) {
+  const rigid::Scene s = rigid::parseScene(sceneWith("", std::string(R"("surfaces": [)") + kSurface + "], "));
+  ASSERT_EQ(s.model.surfaces.size(), 1u);
+  const rigid::Surface& f = s.model.surfaces[0];
+  EXPECT_EQ(f.name, "floor");
+  // derived: centre and half extents of the box
+  EXPECT_TRUE(f.centre.isApprox(0.5 * (f.min + f.max)));
+  EXPECT_TRUE(f.halfExtent.isApprox(0.5 * (f.max - f.min)));
 }
 
-TEST(Scene, ValidMediaAreRefusedAsNotSimulatedYet) {
-  EXPECT_SCENE_ERROR(sceneWith("", std::string(R"("media": [)") + kMedium + "], "),
-                     "media: are not simulated by this version yet");
+TEST(Scene, WaterMediumTakesWatersValues) {
+  const rigid::Scene s = rigid::parseScene(sceneWith("", std::string(R"("media": [)") + kMedium + "], "));
+  ASSERT_EQ(s.model.media.size(), 1u);
+  EXPECT_EQ(s.model.media[0].density, 998.2);      // kg/m^3, water at 20 C
+  EXPECT_EQ(s.model.media[0].viscosity, 1.002e-3);  // Pa s
 }

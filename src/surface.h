@@ -1,0 +1,28 @@
+// Surfaces of the seed paper: bounded boxes that bodies rest and slide on, with
+// static and kinetic friction.
+#pragma once
+
+#include <string>
+
+#include "math_types.h"
+
+namespace rigid {
+
+struct Surface {
+  std::string name;
+  Vec3 min = Vec3::Zero();   // m, corners before the turn about the centre
+  Vec3 max = Vec3::Zero();
+  Quat orientation = Quat::Identity();  // turns the box about its centre
+  double staticFriction = 0.6;   // mu_s, 1
+  double kineticFriction = 0.4;  // mu_k, 1
+  double restitution = 0.5;      // xi, 1
+  // Derived by finishSurface():
+  Vec3 centre = Vec3::Zero();      // m, world frame
+  Mat3 R_WS = Mat3::Identity();    // surface frame -> world
+  Vec3 halfExtent = Vec3::Zero();  // m, in the surface frame
+};
+
+// Fills the derived fields from min, max and orientation.
+void finishSurface(Surface& surface);
+
+}  // namespace rigid

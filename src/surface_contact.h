@@ -1,0 +1,49 @@
+// A body resting or sliding on the top face of a surface (the +z face of the surface
+// box in its own frame, after its turn). Support and Coulomb friction act as forces
+// at the centre of mass inside the force stage, so that every integrator stage sees
+// them; what is instantaneous (landing, reaching rest) is answered after the step.
+#pragma once
+
+#include <vector>
+
+#include "body.h"
+#include "surface.h"
+
+namespace rigid {
+
+// Where a body is with respect to a surface's top face.
+struct SurfaceContact {
+  bool overFace = false;  // centre of mass above the face's bounds
+  Vec3 n = Vec3::Zero();  // unit normal of the face, out of the surface, world frame
+  double gap = 0.0;       // m, height of the body's lowest point above the face (< 0: penetration)
+  double mus = 0.0;       // combined static friction coefficient
+  double muk = 0.0;       // combined kinetic friction coefficient
+  double xi = 0.0;        // combined restitution
+};
+
+SurfaceContact surfaceContact(const Surface& surface, const BodyConstants& body, const BodyState& y);
+
+// Combination rule of a body's and a surface's coefficients: the geometric mean, so
+// that equal values combine to that value and a frictionless partner gives none.
+double combineCoefficients(double body, double surface);
+
+// Distance (m) from the centre of mass to the body's farthest point along the unit
+// direction d (world frame): the support function of the shape.
+double supportDistance(const Shape& shape, const Mat3& R, const Vec3& d);
+
+// Force stage: support N n and friction for every surface the body rests on.
+// aux.F and aux.T must already hold every other force (gravity, inputs, media).
+void addSurfaceForces(const std::vector<Surface>& surfaces, const BodyConstants& body,
+                      const BodyState& y, BodyAux& aux);
+
+// After a step from `before` to `after` of length h, with F (N) the applied force at
+// `after` (every force but the surfaces'): a body that crossed a face lands (the
+// seed's impulse with restitution, only while approaching; penetration removed), and
+// a sliding body comes to rest when its tangential velocity reversed in the step
+// (kinetic friction stops a body, never pushes it back) or is small enough for
+// friction to remove it within one step while static friction holds the load.
+void respondToSurfaces(const std::vector<Surface>& surfaces, const BodyConstants& body,
+                       const Vec3& gravity, const Vec3& F, double h, const BodyState& before,
+                       BodyState& after);
+
+}  // namespace rigid

@@ -8,12 +8,44 @@ namespace {
 
 // A body is in contact with a face when its lowest point is within this distance.
 constexpr double kContactDistance = 1e-9;  // m
-// Tangential speed below which a body on a surface counts as at rest.
+// Slip speed below which a body on a surface counts as not slipping.
 constexpr double kRestSpeed = 1e-9;  // m/s
 
 // Normal speed below which an impact does not bounce and a body may rest: what
 // gravity adds in two steps, so that a resting body's per-step sinking never bounces.
 double restingNormalSpeed(const Vec3& gravity, double h) { return 2.0 * gravity.norm() * h + 1e-9; }
+
+Mat3 cross(const Vec3& r) {
+  Mat3 m;
+  m << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+  return m;
+}
+
+// Friction at arm r on a body: the tangential block of the map from an impulse (or
+// force) at the friction point to that point's velocity (or acceleration) change,
+// K = I/M - [r]x I(t)^-1 [r]x, in an orthonormal tangent basis (t1, t2) of n.
+struct TangentPlane {
+  Vec3 t1, t2;
+  Eigen::Matrix2d K;
+
+  TangentPlane(const Vec3& n, const Vec3& r, double mass, const Mat3& Iinv) {
+    t1 = n.unitOrthogonal();
+    t2 = n.cross(t1);
+    const Mat3 K3 = Mat3::Identity() / mass - cross(r) * Iinv * cross(r);
+    K << t1.dot(K3 * t1), t1.dot(K3 * t2), t2.dot(K3 * t1), t2.dot(K3 * t2);
+  }
+  Eigen::Vector2d components(const Vec3& v) const { return {t1.dot(v), t2.dot(v)}; }
+  Vec3 vector(const Eigen::Vector2d& c) const { return c.x() * t1 + c.y() * t2; }
+  // The tangential force (impulse) at the friction point that cancels the tangential
+  // acceleration (velocity) `a` of that point.
+  Vec3 cancelling(const Vec3& a) const { return vector(-K.inverse() * components(a)); }
+};
+
+// Velocity of the friction point, tangential part.
+Vec3 slipVelocity(const Vec3& V, const Vec3& omega, const Vec3& r, const Vec3& n) {
+  const Vec3 u = V + omega.cross(r);
+  return u - u.dot(n) * n;
+}
 
 }  // namespace
 
@@ -36,6 +68,24 @@ double supportDistance(const Shape& s, const Mat3& R, const Vec3& d) {
     }
   }
   return 0.0;
+}
+
+Vec3 frictionArm(const Shape& s, const Mat3& R, const Vec3& n) {
+  switch (s.type) {
+    case ShapeType::Sphere:
+      return -s.radius * n;
+    case ShapeType::Capsule: {
+      // the centre of the lower cap, then down by the radius; lying flat, the middle
+      const Vec3 axis = R.col(2);
+      const double c = axis.dot(n);
+      const double side = c > 0.0 ? -1.0 : (c < 0.0 ? 1.0 : 0.0);
+      return side * 0.5 * s.length * axis - s.radius * n;
+    }
+    case ShapeType::Box:
+    case ShapeType::Cylinder:
+      return Vec3::Zero();
+  }
+  return Vec3::Zero();
 }
 
 SurfaceContact surfaceContact(const Surface& surface, const BodyConstants& body, const BodyState& y) {
@@ -65,25 +115,41 @@ void addSurfaceForces(const std::vector<Surface>& surfaces, const BodyConstants&
     const double N = -aux.F.dot(c.n);  // the support answers what presses the body on
     if (N <= 0.0) continue;            // pulled away: the face cannot hold it
     aux.F += N * c.n;
-    // Coulomb friction: static holds the body while the tangential load is at most
-    // mu_s N; a sliding body feels mu_k N against its sliding velocity; a body at rest
-    // whose load exceeds mu_s N starts to slide along the load.
-    const Vec3 Ft = aux.F - aux.F.dot(c.n) * c.n;
-    const Vec3 vt = aux.V - vn * c.n;
-    const double speed = vt.norm();
-    if (speed > kRestSpeed) {
-      aux.F -= c.muk * N / speed * vt;
-    } else if (Ft.norm() <= c.mus * N) {
-      aux.F -= Ft;
+    // Coulomb friction at the friction point r: kinetic mu_k N against the slip; when
+    // not slipping, static friction cancels the point's tangential acceleration if it
+    // needs at most mu_s N, else the point starts to slip, mu_k N against that
+    // acceleration. (With r = 0 this is friction on the centre of mass.)
+    const Vec3 r = frictionArm(body.shape, aux.R, c.n);
+    const Vec3 slip = slipVelocity(aux.V, aux.omega, r, c.n);
+    const double slipSpeed = slip.norm();
+    Vec3 f;
+    if (slipSpeed > kRestSpeed) {
+      f = -c.muk * N / slipSpeed * slip;
     } else {
-      aux.F -= c.muk * N / Ft.norm() * Ft;
+      const TangentPlane plane(c.n, r, body.mass, aux.Iinv);
+      const Vec3 a = aux.F / body.mass + (aux.Iinv * aux.T).cross(r);
+      const Vec3 hold = plane.cancelling(a - a.dot(c.n) * c.n);
+      const double need = hold.norm();
+      f = need <= c.mus * N ? hold : Vec3(c.muk * N / need * hold);
     }
+    aux.F += f;
+    aux.T += r.cross(f);
   }
 }
 
+bool struckSurface(const std::vector<Surface>& surfaces, const BodyConstants& body,
+                   const Vec3& gravity, double h, const BodyState& after) {
+  for (const Surface& surface : surfaces) {
+    const SurfaceContact c = surfaceContact(surface, body, after);
+    if (c.overFace && c.gap < 0.0 && (after.P / body.mass).dot(c.n) < -restingNormalSpeed(gravity, h))
+      return true;
+  }
+  return false;
+}
+
 void respondToSurfaces(const std::vector<Surface>& surfaces, const BodyConstants& body,
-                       const Vec3& gravity, const Vec3& F, double h, const BodyState& before,
-                       BodyState& after) {
+                       const Vec3& gravity, const BodyAux& applied, double h,
+                       const BodyState& before, BodyState& after) {
   for (const Surface& surface : surfaces) {
     const SurfaceContact c = surfaceContact(surface, body, after);
     if (!c.overFace || c.gap > kContactDistance) continue;
@@ -95,18 +161,27 @@ void respondToSurfaces(const std::vector<Surface>& surfaces, const BodyConstants
       // velocity is reversed and scaled by xi; slow approaches (resting) just stop.
       const double vnAfter = -vn > restingNormalSpeed(gravity, h) ? -c.xi * vn : 0.0;
       V += (vnAfter - vn) * c.n;
+      after.P = body.mass * V;
     }
-    const double N = -F.dot(c.n);
-    if (V.dot(c.n) <= kRestSpeed && N > 0.0) {
-      const Vec3 vtBefore = before.P / body.mass - (before.P / body.mass).dot(c.n) * c.n;
-      const Vec3 vt = V - V.dot(c.n) * c.n;
-      const Vec3 Ft = F + N * c.n;
-      const bool reversed = vt.dot(vtBefore) < 0.0;
-      const bool holds = Ft.norm() <= c.mus * N;
-      const bool stoppable = vt.norm() <= c.muk * N / body.mass * h + kRestSpeed;
-      if (reversed || (holds && stoppable)) V -= vt;
+    const double N = -applied.F.dot(c.n);
+    if (V.dot(c.n) > kRestSpeed || N <= 0.0) continue;
+    // Stick: the impulse at the friction point that removes its slip.
+    const Vec3 r = frictionArm(body.shape, applied.R, c.n);
+    const Vec3 omega = applied.Iinv * after.L;
+    const Vec3 slip = slipVelocity(V, omega, r, c.n);
+    BodyAux was;
+    computeAuxiliaries(body, before, was);
+    const Vec3 slipBefore = slipVelocity(was.V, was.omega, r, c.n);
+    const TangentPlane plane(c.n, r, body.mass, applied.Iinv);
+    const Vec3 a = applied.F / body.mass + (applied.Iinv * applied.T).cross(r);
+    const bool holds = plane.cancelling(a - a.dot(c.n) * c.n).norm() <= c.mus * N;
+    const Vec3 stop = plane.cancelling(slip);
+    const bool reversed = slip.dot(slipBefore) < 0.0;
+    const bool stoppable = stop.norm() <= c.muk * N * h + body.mass * kRestSpeed;
+    if (reversed || (holds && stoppable)) {
+      after.P += stop;
+      after.L += r.cross(stop);
     }
-    after.P = body.mass * V;
   }
 }
 

@@ -31,19 +31,31 @@ double combineCoefficients(double body, double surface);
 // direction d (world frame): the support function of the shape.
 double supportDistance(const Shape& shape, const Mat3& R, const Vec3& d);
 
+// Where friction acts, from the centre of mass (m, world frame): the lowest point of
+// a round shape (sphere, capsule), so that it rolls; the centre of mass itself for
+// flat-bottomed shapes (box, cylinder), which in this version neither tip nor roll.
+Vec3 frictionArm(const Shape& shape, const Mat3& R, const Vec3& n);
+
 // Force stage: support N n and friction for every surface the body rests on.
 // aux.F and aux.T must already hold every other force (gravity, inputs, media).
 void addSurfaceForces(const std::vector<Surface>& surfaces, const BodyConstants& body,
                       const BodyState& y, BodyAux& aux);
 
-// After a step from `before` to `after` of length h, with F (N) the applied force at
-// `after` (every force but the surfaces'): a body that crossed a face lands (the
-// seed's impulse with restitution, only while approaching; penetration removed), and
-// a sliding body comes to rest when its tangential velocity reversed in the step
-// (kinetic friction stops a body, never pushes it back) or is small enough for
-// friction to remove it within one step while static friction holds the load.
+// After a step from `before` to `after` of length h: a body that reached a face lands
+// (the seed's impulse with restitution, only while approaching; penetration removed),
+// and a slipping body sticks (slip at the friction point removed by an impulse) when
+// its slip reversed in the step (kinetic friction stops slipping, never reverses it)
+// or is small enough for friction to remove within one step while static friction
+// holds the load. `applied` holds the auxiliaries of `after` with F and T the applied
+// loads (every force but the surfaces').
 void respondToSurfaces(const std::vector<Surface>& surfaces, const BodyConstants& body,
-                       const Vec3& gravity, const Vec3& F, double h, const BodyState& before,
-                       BodyState& after);
+                       const Vec3& gravity, const BodyAux& applied, double h,
+                       const BodyState& before, BodyState& after);
+
+// Whether the body, moved from `before` to `after`, has struck a surface's face:
+// penetrating it while approaching faster than a resting body can. The step then
+// locates the instant of impact instead of answering at the end of the step.
+bool struckSurface(const std::vector<Surface>& surfaces, const BodyConstants& body,
+                   const Vec3& gravity, double h, const BodyState& after);
 
 }  // namespace rigid

@@ -42,7 +42,7 @@ void respondToContacts(const WorldModel& model, WorldData& data, double h,
     BodyAux& aux = data.aux[i];
     computeAuxiliaries(model.bodies[i], after[i], aux);
     accumulateAppliedForces(model, model.bodies[i], data.input[i], after[i], aux);
-    respondToSurfaces(model.surfaces, model.bodies[i], model.gravity, aux.F, h, data.Y[i], after[i]);
+    respondToSurfaces(model.surfaces, model.bodies[i], model.gravity, aux, h, data.Y[i], after[i]);
   }
 }
 
@@ -52,17 +52,61 @@ int firstNonFinite(const std::vector<BodyState>& Y) {
   return -1;
 }
 
-}  // namespace
-
-StepResult step(const WorldModel& model, WorldData& data, double h) {
-  std::vector<BodyState>& next = data.scratch.next;
-  integrate(model, data, h, next);  // auxiliaries -> forces -> derivative, per stage
+// Y(t + tau) into next: auxiliaries -> forces -> derivative per stage, then unit q.
+void advance(const WorldModel& model, WorldData& data, double tau, std::vector<BodyState>& next) {
+  integrate(model, data, tau, next);
   normaliseOrientations(next);
-  respondToContacts(model, data, h, next);
+}
+
+bool anyImpact(const WorldModel& model, double h, const std::vector<BodyState>& Y) {
+  if (model.surfaces.empty()) return false;
+  for (size_t i = 0; i < Y.size(); ++i)
+    if (struckSurface(model.surfaces, model.bodies[i], model.gravity, h, Y[i])) return true;
+  return false;
+}
+
+// The instant of the first impact within (0, tau], by bisection on re-integrations
+// from the start of the step, to 1e-15 of the step: the bounce then happens where
+// and when it should, whatever the step size. Leaves next = Y at that instant (just
+// before the penetration) and returns it.
+double locateImpact(const WorldModel& model, WorldData& data, double h, double tau,
+                    std::vector<BodyState>& next) {
+  double lo = 0.0, hi = tau;
+  while (hi - lo > 1e-15 * tau) {
+    const double mid = 0.5 * (lo + hi);
+    advance(model, data, mid, next);
+    (anyImpact(model, h, next) ? hi : lo) = mid;
+  }
+  advance(model, data, lo, next);
+  return lo;
+}
+
+// Accepts next as the new state if it is finite.
+StepResult commit(const WorldModel& model, WorldData& data, std::vector<BodyState>& next) {
   if (const int bad = firstNonFinite(next); bad >= 0) return {false, bad};
   std::swap(data.Y, next);
   refreshAuxiliaries(model, data);
   return {};
+}
+
+}  // namespace
+
+StepResult step(const WorldModel& model, WorldData& data, double h) {
+  // Impacts split the step: integrate to the instant of impact, answer it, go on.
+  constexpr int kMaxImpactsPerStep = 16;
+  std::vector<BodyState>& next = data.scratch.next;
+  double done = 0.0;
+  for (int impacts = 0;; ++impacts) {
+    const double rest = h - done;
+    advance(model, data, rest, next);
+    double taken = rest;
+    if (impacts < kMaxImpactsPerStep && anyImpact(model, h, next) && !anyImpact(model, h, data.Y))
+      taken = locateImpact(model, data, h, rest, next);
+    respondToContacts(model, data, h, next);
+    if (const StepResult r = commit(model, data, next); !r.ok) return r;
+    done += taken;
+    if (taken == rest || impacts >= kMaxImpactsPerStep) return {};
+  }
 }
 
 double totalEnergy(const WorldModel& model, const WorldData& data) {

@@ -47,6 +47,10 @@ rigid::BodyAux auxOf(const rigid::BodyConstants& b, const rigid::BodyState& y, c
   return aux;
 }
 
+rigid::BodyAux applied(const rigid::BodyConstants& b, const rigid::BodyState& y, const Vec3& F) {
+  return auxOf(b, y, F);
+}
+
 }  // namespace
 
 TEST(Surface, SupportDistanceOfShapes) {
@@ -167,7 +171,7 @@ TEST(Surface, LandingReversesTheNormalVelocityScaledByRestitution) {
   before.P = b.mass * Vec3(0.2, 0, -3.0);
   after.X = Vec3(0.0002, 0, 0.098);  // 2 mm into the floor
   after.P = b.mass * Vec3(0.2, 0, -3.01);
-  rigid::respondToSurfaces(floor, b, Vec3(0, 0, -9.81), b.mass * Vec3(0, 0, -9.81), 1e-3, before, after);
+  rigid::respondToSurfaces(floor, b, Vec3(0, 0, -9.81), applied(b, after, b.mass * Vec3(0, 0, -9.81)), 1e-3, before, after);
   EXPECT_NEAR(after.X.z(), 0.1, 1e-15);            // penetration removed along n
   EXPECT_NEAR(after.P.z() / b.mass, 0.5 * 3.01, 1e-12);
   EXPECT_NEAR(after.P.x() / b.mass, 0.2, 1e-15);   // tangential velocity kept
@@ -180,18 +184,18 @@ TEST(Surface, SlidingThatReversesInAStepEndsAtRest) {
   before.X = after.X = Vec3(0, 0, 0.1);
   before.P = b.mass * Vec3(1e-3, 0, 0);
   after.P = b.mass * Vec3(-2e-3, 0, 0);  // friction overshot within the step
-  rigid::respondToSurfaces(floor, b, Vec3(0, 0, -9.81), b.mass * Vec3(0, 0, -9.81), 1e-3, before, after);
+  rigid::respondToSurfaces(floor, b, Vec3(0, 0, -9.81), applied(b, after, b.mass * Vec3(0, 0, -9.81)), 1e-3, before, after);
   EXPECT_EQ(after.P, Vec3::Zero());
   // no reversal, but slow enough for friction (0.3 g h = 2.9 mm/s) to stop it in a step
   after.P = b.mass * Vec3(5e-4, 0, 0);
-  rigid::respondToSurfaces(floor, b, Vec3(0, 0, -9.81), b.mass * Vec3(0, 0, -9.81), 1e-3, before, after);
+  rigid::respondToSurfaces(floor, b, Vec3(0, 0, -9.81), applied(b, after, b.mass * Vec3(0, 0, -9.81)), 1e-3, before, after);
   EXPECT_EQ(after.P, Vec3::Zero());
   // the same, but pushed with 12 N, more than static friction holds (9.81 N): slides on
   after.P = b.mass * Vec3(5e-4, 0, 0);
-  rigid::respondToSurfaces(floor, b, Vec3(0, 0, -9.81), Vec3(12.0, 0, -19.62), 1e-3, before, after);
+  rigid::respondToSurfaces(floor, b, Vec3(0, 0, -9.81), applied(b, after, Vec3(12.0, 0, -19.62)), 1e-3, before, after);
   EXPECT_NEAR(after.P.x() / b.mass, 5e-4, 1e-18);
   // fast: the slide goes on
   after.P = b.mass * Vec3(0.5, 0, 0);
-  rigid::respondToSurfaces(floor, b, Vec3(0, 0, -9.81), b.mass * Vec3(0, 0, -9.81), 1e-3, before, after);
+  rigid::respondToSurfaces(floor, b, Vec3(0, 0, -9.81), applied(b, after, b.mass * Vec3(0, 0, -9.81)), 1e-3, before, after);
   EXPECT_NEAR(after.P.x() / b.mass, 0.5, 1e-15);
 }

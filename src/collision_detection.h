@@ -1,0 +1,55 @@
+// Collision detection of one world instance: which bodies touch each other or a
+// surface, where, along which normal and how deep. FCL finds the candidate pairs
+// (dynamic AABB tree) and the contact of each pair; face contacts (a box, a
+// cylinder's end or side, a capsule's side against a box face) get the corners of
+// their contact patch so that a resting body is held without rocking.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "world.h"  // WorldModel (bodies, surfaces), BodyState
+
+namespace rigid {
+
+// One contact point between two bodies, or between a body and a surface.
+struct Contact {
+  int a = -1;        // body index (always a body)
+  int b = -1;        // other body index, or -1 when the other is a surface
+  int surface = -1;  // surface index when b == -1, else -1
+  Vec3 point = Vec3::Zero();   // m, world frame: midway in the overlap (in the gap when depth < 0)
+  Vec3 normal = Vec3::Zero();  // unit, world frame, FROM a TO b (from body a into the surface when
+                               // b == -1): the direction along which b must move to separate
+  double depth = 0.0;          // m, penetration depth; < 0 only with a margin: -gap
+};
+
+// Collision detection of one world instance: FCL geometry for every body that
+// collides and every surface (a box, turned about its centre), one broadphase manager
+// (fcl::DynamicAABBTreeCollisionManagerd) per instance. No global state: many
+// detectors run side by side in threads.
+class CollisionDetector {
+ public:
+  // `collides[i]` false: body i takes no part (scene switch). Surfaces always take
+  // part. `collides` must have one entry per body (std::invalid_argument otherwise).
+  CollisionDetector(const WorldModel& model, const std::vector<bool>& collides);
+  ~CollisionDetector();
+  CollisionDetector(CollisionDetector&&) noexcept;
+  CollisionDetector& operator=(CollisionDetector&&) noexcept;
+
+  // Contacts of the poses Y (X, q of every body; q need not be unit): updates the
+  // transforms and AABBs, the broadphase, runs the narrowphase on candidate pairs and
+  // REPLACES `out`, sorted by (a, bodies before surfaces, b or surface).
+  // Body-body and body-surface pairs; surface-surface pairs are skipped. In a pair of
+  // two bodies, a is the lower index.
+  // Face contacts give several points (up to 4: the corners of the contact patch),
+  // each with its own depth; other contacts one point.
+  // `margin` (m, >= 0): pairs closer than this are reported too, with
+  // depth = -distance (a gap); with margin 0 only touching or overlapping pairs.
+  void detect(const std::vector<BodyState>& Y, double margin, std::vector<Contact>& out);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rigid

@@ -1,0 +1,70 @@
+"""Impacts on a surface located inside the step, and friction at the contact point of
+round bodies (issue 4), through the FMU against closed forms."""
+import math
+
+import numpy as np
+import pytest
+from fmpy import simulate_fmu
+
+import scenes
+
+G = 9.81
+R = 0.1
+
+
+def floor(xi=0.8, mus=0.5, muk=0.3):
+    return [{"name": "floor", "min": [-50, -5, -1], "max": [50, 5, 0],
+             "staticFriction": mus, "kineticFriction": muk, "restitution": xi}]
+
+
+def drop_scene(h, xi=0.8, h0=1.0):
+    ball = scenes.body("ball", shape={"type": "sphere", "radius": R}, mass=1.0,
+                       position=[0, 0, R + h0], restitution=xi)
+    s = scenes.scene(f"Drop{round(h * 1e4)}", [ball], step=h)
+    s["surfaces"] = floor(xi)
+    return s
+
+
+@pytest.mark.parametrize("h", [1e-3, 1e-2])
+def test_bounce_apex_heights_follow_restitution_at_any_step(fmu_of, h):
+    """Apex n = e^(2n) h0 within 1 % (never above) for n = 1..4, at h = 1e-3 and 1e-2;
+    at rest (|v| < 1e-3 m/s) after t_inf = t1 (1 + e) / (1 - e)."""
+    e, h0 = 0.8, 1.0
+    r = simulate_fmu(str(fmu_of(drop_scene(h, e, h0))), stop_time=6.0, output_interval=h)
+    t, z, v = r["time"], r["ball.position[3]"] - R, r["ball.velocity[3]"]
+    t1 = math.sqrt(2 * h0 / G)
+    # the n-th flight lies between impacts at t1 + 2 t1 (e + ... + e^(n-1)) and the next;
+    # within it every sample gives the apex z + v^2 / 2g
+    impacts = [t1 + 2 * t1 * sum(e ** k for k in range(1, n + 1)) for n in range(0, 6)]
+    for n in range(1, 5):
+        mid = 0.5 * (impacts[n - 1] + impacts[n])
+        i = np.argmin(np.abs(t - mid))
+        apex = z[i] + v[i] ** 2 / (2 * G)
+        target = e ** (2 * n) * h0
+        assert apex == pytest.approx(target, rel=0.01), (n, apex, target)
+        assert apex <= target * (1 + 1e-9), (n, apex, target)
+    t_inf = t1 * (1 + e) / (1 - e)
+    rest = t > t_inf
+    assert np.max(np.abs(v[rest])) < 1e-3
+    assert np.max(np.abs(z[rest])) < 1e-6
+
+
+def test_sliding_sphere_ends_rolling_without_slipping(fmu_of):
+    """v0 = 2 m/s, no spin, mu_k = 0.3: friction at the contact point slows it and spins
+    it up until v = omega r = 5/7 v0 at t = 2 v0 / (7 mu_k g); then it rolls."""
+    v0 = 2.0
+    ball = scenes.body("ball", shape={"type": "sphere", "radius": R}, mass=1.0,
+                       position=[0, 0, R], velocity=[v0, 0, 0], staticFriction=0.5,
+                       kineticFriction=0.3, restitution=0.0)
+    s = scenes.scene("Roll", [ball])
+    s["surfaces"] = floor(0.0)
+    r = simulate_fmu(str(fmu_of(s)), stop_time=2.0, output_interval=0.01)
+    t, v, w = r["time"], r["ball.velocity[1]"], r["ball.angularVelocity[2]"]
+    t_roll = 2 * v0 / (7 * 0.3 * G)
+    sliding = t < t_roll - 0.01
+    np.testing.assert_allclose(v[sliding], v0 - 0.3 * G * t[sliding], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(w[sliding], 2.5 * 0.3 * G * t[sliding] / R, rtol=0, atol=1e-7)
+    rolling = t > t_roll + 0.01
+    assert np.all(np.abs(v[rolling] - 5 / 7 * v0) < 1e-3 * v0)
+    assert np.all(np.abs(w[rolling] * R - v[rolling]) < 1e-9)
+    assert np.all(np.abs(r["ball.position[3]"] - R) < 1e-9)

@@ -171,16 +171,16 @@ fmi2Status Instance::reset() {
   return fmi2OK;
 }
 
-const Variable* Instance::lookup(const char* function, fmi2ValueReference vr, BaseType type) const {
+const Variable* Instance::lookup(const char* function, fmi2ValueReference vr, bool integer) const {
   if (vr >= vars_.size()) {
     error(std::string(function) + ": unknown value reference " + std::to_string(vr) +
           " (this FMU has 0.." + std::to_string(vars_.size() - 1) + ")");
     return nullptr;
   }
   const Variable& v = vars_[vr];
-  if (v.type != type) {
+  if ((v.type != BaseType::Real) != integer) {
     error(std::string(function) + ": value reference " + std::to_string(vr) + " (" + v.name +
-          ") is " + (v.type == BaseType::Real ? "a Real" : "an Enumeration, use fmi2Get/SetInteger"));
+          ") is " + (v.type == BaseType::Real ? "a Real, use fmi2Get/SetReal" : "an Integer or Enumeration, use fmi2Get/SetInteger"));
     return nullptr;
   }
   return &v;
@@ -219,7 +219,7 @@ fmi2Status Instance::write(const Variable& v, double value) {
 fmi2Status Instance::getReal(const fmi2ValueReference vr[], size_t n, fmi2Real value[]) {
   if (n && (!vr || !value)) return error("fmi2GetReal: vr or value is NULL");
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup("fmi2GetReal", vr[i], BaseType::Real);
+    const Variable* v = lookup("fmi2GetReal", vr[i], false);
     if (!v) return fmi2Error;
     value[i] = read(*v);
   }
@@ -229,7 +229,7 @@ fmi2Status Instance::getReal(const fmi2ValueReference vr[], size_t n, fmi2Real v
 fmi2Status Instance::getInteger(const fmi2ValueReference vr[], size_t n, fmi2Integer value[]) {
   if (n && (!vr || !value)) return error("fmi2GetInteger: vr or value is NULL");
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup("fmi2GetInteger", vr[i], BaseType::Enumeration);
+    const Variable* v = lookup("fmi2GetInteger", vr[i], true);
     if (!v) return fmi2Error;
     value[i] = static_cast<fmi2Integer>(read(*v));
   }
@@ -239,7 +239,7 @@ fmi2Status Instance::getInteger(const fmi2ValueReference vr[], size_t n, fmi2Int
 fmi2Status Instance::setReal(const fmi2ValueReference vr[], size_t n, const fmi2Real value[]) {
   if (n && (!vr || !value)) return error("fmi2SetReal: vr or value is NULL");
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup("fmi2SetReal", vr[i], BaseType::Real);
+    const Variable* v = lookup("fmi2SetReal", vr[i], false);
     if (!v) return fmi2Error;
     if (const fmi2Status s = write(*v, value[i]); s != fmi2OK) return s;
   }
@@ -249,7 +249,7 @@ fmi2Status Instance::setReal(const fmi2ValueReference vr[], size_t n, const fmi2
 fmi2Status Instance::setInteger(const fmi2ValueReference vr[], size_t n, const fmi2Integer value[]) {
   if (n && (!vr || !value)) return error("fmi2SetInteger: vr or value is NULL");
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup("fmi2SetInteger", vr[i], BaseType::Enumeration);
+    const Variable* v = lookup("fmi2SetInteger", vr[i], true);
     if (!v) return fmi2Error;
     if (const fmi2Status s = write(*v, value[i]); s != fmi2OK) return s;
   }

@@ -68,7 +68,8 @@ class Instance {
 
   void restart();  // the just-instantiated state
   // The variable behind vr if it exists and has the given type; logs otherwise.
-  const Variable* lookup(const char* function, fmi2ValueReference vr, BaseType type) const;
+  // Real access takes Real variables; integer access Integer and Enumeration ones.
+  const Variable* lookup(const char* function, fmi2ValueReference vr, bool integer) const;
   // Whether a variable may be written in the current state; logs otherwise.
   bool writable(const Variable& v) const;
   fmi2Status write(const Variable& v, double value);

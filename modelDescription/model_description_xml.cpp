@@ -66,6 +66,7 @@ const char* variabilityName(Variability v) {
   switch (v) {
     case Variability::Fixed: return "fixed";
     case Variability::Tunable: return "tunable";
+    case Variability::Discrete: return "discrete";
     case Variability::Continuous: return "continuous";
   }
   return "";
@@ -141,6 +142,10 @@ std::string modelDescriptionXml(const rigid::Scene& scene) {
     const double start = readValue(v, model, data, Phase::Setup);
     if (v.type == BaseType::Enumeration) {
       x << "<Enumeration declaredType=\"SolverMethod\" start=\"" << static_cast<int>(start) << "\"/>";
+    } else if (v.type == BaseType::Integer) {
+      x << "<Integer";
+      if (hasStart) x << " start=\"" << static_cast<int>(start) << "\"";
+      x << "/>";
     } else {
       x << "<Real unit=\"" << escape(v.unit) << "\"";
       if (hasStart) x << " start=\"" << fmt(start) << "\"";

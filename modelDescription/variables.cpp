@@ -110,6 +110,9 @@ std::vector<Variable> modelVariables(const Scene& scene) {
              body.name + ": " + q.meaning + ", " + part});
       }
     }
+    add({0, body.name + ".contacts", Quantity::Contacts, bi, 0, Causality::Output,
+         Variability::Discrete, Initial::Calculated, BaseType::Integer, "",
+         body.name + ": number of contact points at the end of the last step (surfaces and bodies)"});
   }
   return vars;
 }
@@ -159,6 +162,7 @@ double readValue(const Variable& v, const WorldModel& model, const WorldData& da
       return setup ? vectorPart(rigid::initialState(model.bodies[b]).L, c) : data.Y[b].L[c];
     case Quantity::Force: return data.input[b].force[c];
     case Quantity::Torque: return data.input[b].torque[c];
+    case Quantity::Contacts: return setup ? 0.0 : static_cast<double>(data.contacts[b]);
   }
   return 0.0;
 }
@@ -218,6 +222,8 @@ std::string writeValue(const Variable& v, double value, WorldModel& model, World
     case Quantity::Torque:
       data.input[b].torque[c] = value;
       return "";
+    case Quantity::Contacts:
+      return v.name + ": a calculated output; it cannot be set";
   }
   return v.name + ": cannot be set";
 }

@@ -11,16 +11,17 @@
 namespace rigidfmu {
 
 enum class Causality { Parameter, Input, Output, Independent };
-enum class Variability { Fixed, Tunable, Continuous };
+enum class Variability { Fixed, Tunable, Discrete, Continuous };
 enum class Initial { None, Exact, Calculated };
-// FMI base type. Enumeration values travel through fmi2Get/SetInteger.
-enum class BaseType { Real, Enumeration };
+// FMI base type. Integer and Enumeration values travel through fmi2Get/SetInteger.
+enum class BaseType { Real, Integer, Enumeration };
 
 enum class Quantity {
   Time, Gravity, SolverMethod, SolverStep,
   Mass, Restitution,
   Position, Orientation, Velocity, AngularVelocity, LinearMomentum, AngularMomentum,
   Force, Torque,
+  Contacts,
 };
 
 struct Variable {

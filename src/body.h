@@ -28,6 +28,7 @@ struct BodyConstants {
   double restitution = 0.5;           // xi, 1
   double staticFriction = 0.6;        // mu_s, 1
   double kineticFriction = 0.4;       // mu_k, 1
+  bool collides = true;               // takes part in body-body collision detection
   BodyStart start;
 };
 

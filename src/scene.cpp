@@ -75,6 +75,12 @@ class Object {
     return at(key).get<std::string>();
   }
 
+  bool boolean(const char* key, bool fallback) const {
+    if (!has(key)) return fallback;
+    if (!at(key).is_boolean()) fail(path(key), "must be true or false");
+    return at(key).get<bool>();
+  }
+
   Eigen::VectorXd vector(const char* key, int n, const Eigen::VectorXd& fallback) const {
     if (!has(key)) return fallback;
     return toVector(at(key), path(key), n);
@@ -195,7 +201,7 @@ Mat3 readInertia(const json& j, const std::string& path) {
 BodyConstants readBody(const json& j, const std::string& path) {
   Object o(j, path,
            {"name", "shape", "mass", "inertia", "position", "orientation", "velocity",
-            "angularVelocity", "restitution", "staticFriction", "kineticFriction"});
+            "angularVelocity", "restitution", "staticFriction", "kineticFriction", "collision"});
   BodyConstants b;
   b.name = identifier(o, "name");
   if (!o.has("shape")) fail(o.path("shape"), "is required");
@@ -208,6 +214,7 @@ BodyConstants readBody(const json& j, const std::string& path) {
   b.start.angularVelocity = o.vec3("angularVelocity", Vec3::Zero());
   b.restitution = inRange(o, "restitution", defaults::kRestitution, 0.0, 1.0);
   friction(o, b.staticFriction, b.kineticFriction);
+  b.collides = o.boolean("collision", true);
   return b;
 }
 

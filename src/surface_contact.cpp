@@ -147,12 +147,14 @@ bool struckSurface(const std::vector<Surface>& surfaces, const BodyConstants& bo
   return false;
 }
 
-void respondToSurfaces(const std::vector<Surface>& surfaces, const BodyConstants& body,
-                       const Vec3& gravity, const BodyAux& applied, double h,
-                       const BodyState& before, BodyState& after) {
+int respondToSurfaces(const std::vector<Surface>& surfaces, const BodyConstants& body,
+                      const Vec3& gravity, const BodyAux& applied, double h,
+                      const BodyState& before, BodyState& after) {
+  int touching = 0;
   for (const Surface& surface : surfaces) {
     const SurfaceContact c = surfaceContact(surface, body, after);
     if (!c.overFace || c.gap > kContactDistance) continue;
+    ++touching;
     Vec3 V = after.P / body.mass;
     const double vn = V.dot(c.n);
     if (c.gap < 0.0) after.X -= c.gap * c.n;  // out of the face, along its normal
@@ -183,6 +185,7 @@ void respondToSurfaces(const std::vector<Surface>& surfaces, const BodyConstants
       after.L += r.cross(stop);
     }
   }
+  return touching;
 }
 
 }  // namespace rigid

@@ -48,9 +48,10 @@ void addSurfaceForces(const std::vector<Surface>& surfaces, const BodyConstants&
 // or is small enough for friction to remove within one step while static friction
 // holds the load. `applied` holds the auxiliaries of `after` with F and T the applied
 // loads (every force but the surfaces').
-void respondToSurfaces(const std::vector<Surface>& surfaces, const BodyConstants& body,
-                       const Vec3& gravity, const BodyAux& applied, double h,
-                       const BodyState& before, BodyState& after);
+// Returns the number of surfaces the body touches.
+int respondToSurfaces(const std::vector<Surface>& surfaces, const BodyConstants& body,
+                      const Vec3& gravity, const BodyAux& applied, double h,
+                      const BodyState& before, BodyState& after);
 
 // Whether the body, moved from `before` to `after`, has struck a surface's face:
 // penetrating it while approaching faster than a resting body can. The step then

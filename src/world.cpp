@@ -14,6 +14,7 @@ WorldData initialData(const WorldModel& model) {
   for (const BodyConstants& body : model.bodies) d.Y.push_back(initialState(body));
   d.input.assign(n, BodyInput{});
   d.aux.resize(n);
+  d.contacts.assign(n, 0);
   d.scratch.stage.resize(n);
   d.scratch.next.resize(n);
   for (auto& k : d.scratch.k) k.resize(n);
@@ -42,7 +43,8 @@ void respondToContacts(const WorldModel& model, WorldData& data, double h,
     BodyAux& aux = data.aux[i];
     computeAuxiliaries(model.bodies[i], after[i], aux);
     accumulateAppliedForces(model, model.bodies[i], data.input[i], after[i], aux);
-    respondToSurfaces(model.surfaces, model.bodies[i], model.gravity, aux, h, data.Y[i], after[i]);
+    data.contacts[i] =
+        respondToSurfaces(model.surfaces, model.bodies[i], model.gravity, aux, h, data.Y[i], after[i]);
   }
 }
 

@@ -36,6 +36,7 @@ struct WorldData {
   std::vector<BodyState> Y;    // state vectors
   std::vector<BodyInput> input;  // external loads (FMU inputs)
   std::vector<BodyAux> aux;    // auxiliaries of Y, valid after initialise() and step()
+  std::vector<int> contacts;   // contact points of each body at the end of the last step
   Scratch scratch;
 };
 

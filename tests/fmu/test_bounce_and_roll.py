@@ -68,3 +68,20 @@ def test_sliding_sphere_ends_rolling_without_slipping(fmu_of):
     assert np.all(np.abs(v[rolling] - 5 / 7 * v0) < 1e-3 * v0)
     assert np.all(np.abs(w[rolling] * R - v[rolling]) < 1e-9)
     assert np.all(np.abs(r["ball.position[3]"] - R) < 1e-9)
+
+
+def test_contact_count_output(fmu_of):
+    """b.contacts: contact points at the end of the last step, 0 in flight, 1 at rest."""
+    from harness import Slave
+    s = Slave(fmu_of(drop_scene(1e-3, xi=0.0, h0=0.2)))
+    try:
+        s.initialize()
+        vr = s.vr(["ball.contacts"])
+        assert s.slave.getInteger(vr) == [0]
+        s.step(0.1)
+        assert s.slave.getInteger(vr) == [0]        # still falling (lands at 0.2 s)
+        s.step(0.5)
+        assert s.slave.getInteger(vr) == [1]        # resting on the floor
+        assert s.get("ball.position[3]") == pytest.approx(R, abs=1e-9)
+    finally:
+        s.close()

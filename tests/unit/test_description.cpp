@@ -44,6 +44,7 @@ std::set<std::string> expectedBodyNames(const std::string& b) {
   for (int i = 1; i <= 4; ++i) names.insert(b + ".orientation[" + std::to_string(i) + "]");
   names.insert(b + ".mass");
   names.insert(b + ".restitution");
+  names.insert(b + ".contacts");  // extension: contact points in the last step (issue 4)
   return names;
 }
 
@@ -85,7 +86,7 @@ TEST_F(Description, VariableNamesAreThoseOfTheInterface) {
   EXPECT_EQ(byOwner["world"], world);
   EXPECT_EQ(byOwner.size(), 3u);
   // 27 per body + 6 world variables.
-  EXPECT_EQ(vars.size(), 2u * 27u + 6u);
+  EXPECT_EQ(vars.size(), 2u * 28u + 6u);  // 28 per body, 6 for the world
 }
 
 TEST_F(Description, CausalityAndUnitsFollowTheInterfaceTable) {

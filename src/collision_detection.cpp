@@ -1,0 +1,540 @@
+#include "collision_detection.h"
+
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <utility>
+
+namespace rigid {
+
+namespace {
+
+// A contact normal within this angle of a box face's normal (cos ~11.5 deg) makes a
+// face contact: that face is the reference face of the patch.
+constexpr double kFaceAlign = 0.98;
+// A cylinder or capsule whose axis makes |cos| below this (~11.5 deg) with the normal
+// lies on its side: a line contact.
+constexpr double kSideAlign = 0.2;
+// Largest number of points of one pair's patch (the response wants few, well spread).
+constexpr int kMaxPatch = 4;
+// Vertices of an incident polygon: an octagon for a cylinder's end, plus one per clip.
+constexpr int kMaxPoly = 16;
+constexpr double kPi = 3.14159265358979323846;
+
+// Geometry of one collision object in the frame FCL sees it: centre p and rotation
+// R (shape frame -> world), refreshed by detect().
+struct Geo {
+  ShapeType type = ShapeType::Box;
+  Vec3 half = Vec3::Zero();   // m, box half extents (shape frame)
+  double radius = 0.0;        // m, sphere, cylinder, capsule
+  double halfLength = 0.0;    // m, cylinder, capsule: half the length along shape z
+  Mat3 R = Mat3::Identity();  // shape frame -> world
+  Vec3 p = Vec3::Zero();      // m, centre, world frame
+};
+
+// Support function: max over the shape of d.x, for x relative to the centre.
+double supportExtent(const Geo& g, const Vec3& d) {
+  switch (g.type) {
+    case ShapeType::Sphere:
+      return g.radius * d.norm();
+    case ShapeType::Box:
+      return (g.R.transpose() * d).cwiseAbs().dot(g.half);
+    case ShapeType::Cylinder: {
+      const double du = g.R.col(2).dot(d);
+      return g.halfLength * std::abs(du) + g.radius * std::sqrt(std::max(0.0, d.squaredNorm() - du * du));
+    }
+    case ShapeType::Capsule:
+      return g.halfLength * std::abs(g.R.col(2).dot(d)) + g.radius * d.norm();
+  }
+  return 0.0;
+}
+
+// Half extents of the tight world AABB of the shape.
+Vec3 aabbHalfExtent(const Geo& g) {
+  switch (g.type) {
+    case ShapeType::Sphere:
+      return Vec3::Constant(g.radius);
+    case ShapeType::Box:
+      return g.R.cwiseAbs() * g.half;
+    case ShapeType::Cylinder: {
+      const Vec3 u = g.R.col(2);
+      Vec3 e;
+      for (int i = 0; i < 3; ++i)
+        e[i] = g.halfLength * std::abs(u[i]) + g.radius * std::sqrt(std::max(0.0, 1.0 - u[i] * u[i]));
+      return e;
+    }
+    case ShapeType::Capsule:
+      return g.halfLength * g.R.col(2).cwiseAbs() + Vec3::Constant(g.radius);
+  }
+  return Vec3::Zero();
+}
+
+// A point of the shape farthest along d (world frame).
+Vec3 supportPoint(const Geo& g, const Vec3& d) {
+  const Vec3 dn = d.normalized();
+  switch (g.type) {
+    case ShapeType::Sphere:
+      return g.p + g.radius * dn;
+    case ShapeType::Box: {
+      const Vec3 dl = g.R.transpose() * d;
+      return g.p + g.R * Vec3(dl.x() >= 0 ? g.half.x() : -g.half.x(), dl.y() >= 0 ? g.half.y() : -g.half.y(),
+                              dl.z() >= 0 ? g.half.z() : -g.half.z());
+    }
+    case ShapeType::Cylinder:
+    case ShapeType::Capsule: {
+      const Vec3 u = g.R.col(2);
+      const double du = u.dot(dn);
+      const Vec3 end = g.p + u * (du >= 0.0 ? g.halfLength : -g.halfLength);
+      if (g.type == ShapeType::Capsule) return end + g.radius * dn;
+      const Vec3 across = dn - du * u;
+      return across.norm() > 1e-12 ? Vec3(end + g.radius * across.normalized()) : end;
+    }
+  }
+  return g.p;
+}
+
+Vec3 anyPerpendicular(const Vec3& u) {
+  const Vec3 other = std::abs(u.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  return u.cross(other).normalized();
+}
+
+// Sutherland-Hodgman: keeps the part of the polygon `in` (n vertices) where
+// t.(x - o) <= e. Returns the vertex count written to `out`.
+int clipPolygon(const Vec3* in, int n, const Vec3& t, double e, const Vec3& o, Vec3* out) {
+  int m = 0;
+  for (int i = 0; i < n; ++i) {
+    const Vec3& prev = in[(i + n - 1) % n];
+    const Vec3& cur = in[i];
+    const double dp = t.dot(prev - o) - e;
+    const double dc = t.dot(cur - o) - e;
+    if (dc <= 0.0) {
+      if (dp > 0.0 && m < kMaxPoly) out[m++] = prev + (cur - prev) * (dp / (dp - dc));
+      if (m < kMaxPoly) out[m++] = cur;
+    } else if (dp <= 0.0 && m < kMaxPoly) {
+      out[m++] = prev + (cur - prev) * (dp / (dp - dc));
+    }
+  }
+  return m;
+}
+
+// Liang-Barsky: clips the segment s[0]-s[1] to t.(x - o) <= e; false when nothing is left.
+bool clipSegment(Vec3* s, const Vec3& t, double e, const Vec3& o) {
+  const double d0 = t.dot(s[0] - o) - e;
+  const double d1 = t.dot(s[1] - o) - e;
+  if (d0 > 0.0 && d1 > 0.0) return false;
+  if (d0 > 0.0) s[0] = s[0] + (s[1] - s[0]) * (d0 / (d0 - d1));
+  else if (d1 > 0.0) s[1] = s[1] + (s[0] - s[1]) * (d1 / (d1 - d0));
+  return true;
+}
+
+// Picks at most kMaxPatch of the n points, well spread: the deepest, the farthest
+// from it, and the farthest on either side of the line through those two (in the
+// plane of normal m). Writes indices to keep[]; returns their count.
+int reducePatch(const Vec3* pts, const double* sep, int n, const Vec3& m, int* keep) {
+  if (n <= kMaxPatch) {
+    for (int i = 0; i < n; ++i) keep[i] = i;
+    return n;
+  }
+  int i0 = 0;
+  for (int i = 1; i < n; ++i)
+    if (sep[i] < sep[i0]) i0 = i;
+  int i1 = i0 == 0 ? 1 : 0;
+  for (int i = 0; i < n; ++i)
+    if ((pts[i] - pts[i0]).squaredNorm() > (pts[i1] - pts[i0]).squaredNorm()) i1 = i;
+  const Vec3 line = pts[i1] - pts[i0];
+  int i2 = -1, i3 = -1;
+  double best2 = 0.0, best3 = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double s = m.dot(line.cross(pts[i] - pts[i0]));
+    if (s > best2) { best2 = s; i2 = i; }
+    if (s < best3) { best3 = s; i3 = i; }
+  }
+  int k = 0;
+  keep[k++] = i0;
+  keep[k++] = i1;
+  if (i2 >= 0) keep[k++] = i2;
+  if (i3 >= 0) keep[k++] = i3;
+  return k;
+}
+
+// The patch of a face contact: the reference face is the face of a box (A or B) whose
+// normal is within kFaceAlign of the contact normal n (a -> b); the incident feature
+// of the other shape (a box's face, a cylinder's end or side, a capsule's side; the
+// lowest point of a sphere, a standing capsule or a tilted cylinder) is clipped to the
+// reference face's rectangle. Points with a separation below `margin`
+// (or touching/overlapping) are appended to `out` as copies of `proto` with point,
+// normal and depth filled. Returns the number appended: 0 when this is no face
+// contact (or nothing of the feature lies on the face), and the caller keeps FCL's.
+int appendFacePatch(const Geo& A, const Geo& B, const Vec3& n, double margin, const Contact& proto,
+                    std::vector<Contact>& out) {
+  double alignA = -1.0, alignB = -1.0;
+  int kA = -1, kB = -1;
+  for (int k = 0; k < 3; ++k) {
+    if (B.type == ShapeType::Box && std::abs(B.R.col(k).dot(n)) > alignB) {
+      alignB = std::abs(B.R.col(k).dot(n));
+      kB = k;
+    }
+    if (A.type == ShapeType::Box && std::abs(A.R.col(k).dot(n)) > alignA) {
+      alignA = std::abs(A.R.col(k).dot(n));
+      kA = k;
+    }
+  }
+  // B (the surface, when there is one) is the reference on a tie.
+  const bool refIsB = kB >= 0 && alignB >= alignA - 1e-12;
+  const double align = refIsB ? alignB : alignA;
+  if (align < kFaceAlign) return 0;
+  const Geo& ref = refIsB ? B : A;
+  const Geo& inc = refIsB ? A : B;
+  const int k = refIsB ? kB : kA;
+  const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+  const Vec3 toward = refIsB ? Vec3(-n) : n;  // from the reference shape to the incident one
+  const Vec3 m = ref.R.col(k).dot(toward) > 0.0 ? Vec3(ref.R.col(k)) : Vec3(-ref.R.col(k));
+  const Vec3 faceCentre = ref.p + m * ref.half[k];
+
+  // The incident feature: a polygon (np >= 3), a segment (np == 2) or a point (np == 1).
+  Vec3 bufA[kMaxPoly], bufB[kMaxPoly];
+  int np = 0;
+  switch (inc.type) {
+    case ShapeType::Sphere:
+      bufA[0] = inc.p - inc.radius * m;  // its lowest point on the face
+      np = 1;
+      break;
+    case ShapeType::Box: {
+      int j = 0;
+      for (int i = 1; i < 3; ++i)
+        if (std::abs(inc.R.col(i).dot(m)) > std::abs(inc.R.col(j).dot(m))) j = i;
+      const Vec3 faceOut = inc.R.col(j).dot(m) > 0.0 ? Vec3(-inc.R.col(j)) : Vec3(inc.R.col(j));
+      const Vec3 c = inc.p + faceOut * inc.half[j];
+      const Vec3 u1 = inc.R.col((j + 1) % 3) * inc.half[(j + 1) % 3];
+      const Vec3 u2 = inc.R.col((j + 2) % 3) * inc.half[(j + 2) % 3];
+      bufA[0] = c - u1 - u2;
+      bufA[1] = c + u1 - u2;
+      bufA[2] = c + u1 + u2;
+      bufA[3] = c - u1 + u2;
+      np = 4;
+      break;
+    }
+    case ShapeType::Cylinder:
+    case ShapeType::Capsule: {
+      const Vec3 u = inc.R.col(2);
+      const double c = u.dot(m);
+      const Vec3 down = -(m - c * u);  // in the plane across the axis, toward the face
+      if (inc.type == ShapeType::Cylinder && std::abs(c) >= kFaceAlign) {
+        // End disc facing the reference face: an octagon on its rim, starting at the
+        // rim's deepest point.
+        const Vec3 centre = inc.p + u * (c > 0.0 ? -inc.halfLength : inc.halfLength);
+        const Vec3 w1 = down.norm() > 1e-9 ? Vec3(down.normalized()) : anyPerpendicular(u);
+        const Vec3 w2 = u.cross(w1);
+        for (int i = 0; i < 8; ++i) {
+          const double th = i * kPi / 4.0;
+          bufA[i] = centre + inc.radius * (std::cos(th) * w1 + std::sin(th) * w2);
+        }
+        np = 8;
+      } else if (std::abs(c) <= kSideAlign) {
+        // Lying on its side: the line of the side (cylinder) or of the caps' lowest
+        // points (capsule).
+        const Vec3 off = inc.type == ShapeType::Cylinder ? Vec3(inc.radius * down.normalized())
+                                                          : Vec3(-inc.radius * m);
+        bufA[0] = inc.p - u * inc.halfLength + off;
+        bufA[1] = inc.p + u * inc.halfLength + off;
+        np = 2;
+      } else {
+        // Standing capsule or tilted cylinder: one point, the lowest of the end cap
+        // (capsule) or of the end's rim (cylinder) nearer the face.
+        const Vec3 end = inc.p + u * (c > 0.0 ? -inc.halfLength : inc.halfLength);
+        bufA[0] = inc.type == ShapeType::Capsule ? Vec3(end - inc.radius * m)
+                                                 : Vec3(end + inc.radius * down.normalized());
+        np = 1;
+      }
+      break;
+    }
+  }
+
+  // Clip to the reference face's rectangle (its four side planes).
+  const Vec3 sideAxis[4] = {ref.R.col(k1), -ref.R.col(k1), ref.R.col(k2), -ref.R.col(k2)};
+  const double sideHalf[4] = {ref.half[k1], ref.half[k1], ref.half[k2], ref.half[k2]};
+  Vec3* pts = bufA;
+  if (np == 1) {
+    for (int s = 0; s < 4; ++s)
+      if (sideAxis[s].dot(pts[0] - faceCentre) > sideHalf[s]) return 0;  // off the face: an edge
+  } else if (np == 2) {
+    for (int s = 0; s < 4; ++s)
+      if (!clipSegment(pts, sideAxis[s], sideHalf[s], faceCentre)) return 0;
+  } else {
+    Vec3* other = bufB;
+    for (int s = 0; s < 4 && np > 0; ++s) {
+      np = clipPolygon(pts, np, sideAxis[s], sideHalf[s], faceCentre, other);
+      std::swap(pts, other);
+    }
+  }
+
+  // Separation of each point from the reference face (< 0: penetration).
+  double sep[kMaxPoly];
+  int kept = 0;
+  for (int i = 0; i < np; ++i) {
+    const double s = m.dot(pts[i] - faceCentre);
+    if (s <= 0.0 || s < margin) {
+      pts[kept] = pts[i];
+      sep[kept] = s;
+      ++kept;
+    }
+  }
+  int keep[kMaxPatch];
+  const int count = reducePatch(pts, sep, kept, m, keep);
+  const Vec3 normal = refIsB ? Vec3(-m) : m;
+  for (int i = 0; i < count; ++i) {
+    Contact c = proto;
+    c.normal = normal;
+    c.depth = -sep[keep[i]];
+    c.point = pts[keep[i]] - m * (0.5 * sep[keep[i]]);  // midway between the feature and the face
+    out.push_back(c);
+  }
+  return count;
+}
+
+// The separating-axis normal (a -> b) over the face normals of the boxes of the
+// pair, for when the nearest points coincide (touching); the centre line otherwise.
+Vec3 touchingNormal(const Geo& A, const Geo& B) {
+  double best = -std::numeric_limits<double>::infinity();
+  Vec3 n = B.p - A.p;
+  n = n.norm() > 0.0 ? Vec3(n.normalized()) : Vec3(Vec3::UnitZ());
+  for (int k = 0; k < 3; ++k) {
+    for (double s : {-1.0, 1.0}) {
+      if (B.type == ShapeType::Box) {  // m out of B: sep = min over A of m.x - max over B of m.x
+        const Vec3 m = s * B.R.col(k);
+        const double sep = m.dot(A.p - B.p) - supportExtent(A, -m) - supportExtent(B, m);
+        if (sep > best) { best = sep; n = -m; }
+      }
+      if (A.type == ShapeType::Box) {
+        const Vec3 m = s * A.R.col(k);
+        const double sep = m.dot(B.p - A.p) - supportExtent(B, -m) - supportExtent(A, m);
+        if (sep > best) { best = sep; n = m; }
+      }
+    }
+  }
+  return n;
+}
+
+std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const Geo& g) {
+  switch (g.type) {
+    case ShapeType::Sphere:
+      return std::make_shared<fcl::Sphered>(g.radius);
+    case ShapeType::Box:
+      return std::make_shared<fcl::Boxd>(2.0 * g.half);  // FCL takes full edge lengths
+    case ShapeType::Cylinder:
+      return std::make_shared<fcl::Cylinderd>(g.radius, 2.0 * g.halfLength);  // axis z, total length
+    case ShapeType::Capsule:
+      return std::make_shared<fcl::Capsuled>(g.radius, 2.0 * g.halfLength);  // cylinder part, axis z
+  }
+  return nullptr;
+}
+
+void* slotTag(int slot) { return reinterpret_cast<void*>(static_cast<std::intptr_t>(slot)); }
+int tagSlot(const fcl::CollisionObjectd* o) {
+  return static_cast<int>(reinterpret_cast<std::intptr_t>(o->getUserData()));
+}
+
+}  // namespace
+
+struct CollisionDetector::Impl {
+  // A candidate pair of the broadphase, ordered: a is a body; b a body of a higher
+  // index, or -1 with `surface` set.
+  struct Pair {
+    int a, b, surface;
+    int slotA, slotB;
+    bool operator<(const Pair& o) const {
+      const int kind = surface >= 0, okind = o.surface >= 0;
+      const int other = kind ? surface : b, oother = okind ? o.surface : o.b;
+      return std::tie(a, kind, other) < std::tie(o.a, okind, oother);
+    }
+  };
+
+  int nBodySlots = 0;                 // slots [0, nBodySlots): colliding bodies; then surfaces
+  std::vector<int> slotIndex;         // slot -> body or surface index
+  std::vector<int> bodySlot;          // body index -> slot, -1 when it does not collide
+  std::vector<Geo> geo;               // per slot
+  std::vector<Vec3> surfaceHalfAabb;  // per surface: half extents of its world AABB
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;  // per slot
+  fcl::DynamicAABBTreeCollisionManagerd manager;
+  std::vector<Pair> pairs;            // scratch of detect()
+  fcl::CollisionRequestd request;
+  fcl::CollisionResultd result;
+  fcl::DistanceRequestd distanceRequest;
+  fcl::DistanceResultd distanceResult;
+
+  bool isBody(int slot) const { return slot < nBodySlots; }
+
+  static bool collect(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data) {
+    Impl& self = *static_cast<Impl*>(data);
+    int s1 = tagSlot(o1), s2 = tagSlot(o2);
+    if (!self.isBody(s1) && !self.isBody(s2)) return false;  // surface-surface
+    if (!self.isBody(s1) || (self.isBody(s2) && self.slotIndex[s2] < self.slotIndex[s1])) std::swap(s1, s2);
+    Pair p{self.slotIndex[s1], -1, -1, s1, s2};
+    if (self.isBody(s2)) p.b = self.slotIndex[s2];
+    else p.surface = self.slotIndex[s2];
+    self.pairs.push_back(p);
+    return false;  // never stop early
+  }
+
+  void narrowphase(const Pair& pr, double margin, std::vector<Contact>& out);
+};
+
+CollisionDetector::CollisionDetector(const WorldModel& model, const std::vector<bool>& collides)
+    : impl_(std::make_unique<Impl>()) {
+  if (collides.size() != model.bodies.size())
+    throw std::invalid_argument("CollisionDetector: collides has " + std::to_string(collides.size()) +
+                                " entries for " + std::to_string(model.bodies.size()) + " bodies");
+  Impl& d = *impl_;
+  d.bodySlot.assign(model.bodies.size(), -1);
+  for (size_t i = 0; i < model.bodies.size(); ++i) {
+    if (!collides[i]) continue;
+    const Shape& s = model.bodies[i].shape;
+    Geo g;
+    g.type = s.type;
+    g.half = 0.5 * s.size;
+    g.radius = s.radius;
+    g.halfLength = 0.5 * s.length;
+    d.bodySlot[i] = static_cast<int>(d.geo.size());
+    d.slotIndex.push_back(static_cast<int>(i));
+    d.geo.push_back(g);
+  }
+  d.nBodySlots = static_cast<int>(d.geo.size());
+  for (size_t j = 0; j < model.surfaces.size(); ++j) {
+    const Surface& s = model.surfaces[j];
+    Geo g;
+    g.type = ShapeType::Box;
+    g.half = s.halfExtent;
+    g.R = s.R_WS;
+    g.p = s.centre;
+    d.slotIndex.push_back(static_cast<int>(j));
+    d.geo.push_back(g);
+    d.surfaceHalfAabb.push_back(aabbHalfExtent(g));
+  }
+  std::vector<fcl::CollisionObjectd*> raw;
+  for (size_t slot = 0; slot < d.geo.size(); ++slot) {
+    const Geo& g = d.geo[slot];
+    auto obj = std::make_unique<fcl::CollisionObjectd>(makeGeometry(g), g.R, g.p);
+    obj->setUserData(slotTag(static_cast<int>(slot)));
+    raw.push_back(obj.get());
+    d.objects.push_back(std::move(obj));
+  }
+  d.manager.registerObjects(raw);
+  d.manager.setup();
+  d.pairs.reserve(4 * d.geo.size());
+
+  d.request.num_max_contacts = 8;
+  d.request.enable_contact = true;
+  d.request.gjk_solver_type = fcl::GST_LIBCCD;  // GST_INDEP gives negative depths for GJK pairs
+  d.distanceRequest.enable_nearest_points = true;
+  d.distanceRequest.gjk_solver_type = fcl::GST_LIBCCD;
+}
+
+CollisionDetector::~CollisionDetector() = default;
+CollisionDetector::CollisionDetector(CollisionDetector&&) noexcept = default;
+CollisionDetector& CollisionDetector::operator=(CollisionDetector&&) noexcept = default;
+
+void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, std::vector<Contact>& out) {
+  Impl& d = *impl_;
+  if (Y.size() != d.bodySlot.size())
+    throw std::invalid_argument("CollisionDetector::detect: " + std::to_string(Y.size()) + " states for " +
+                                std::to_string(d.bodySlot.size()) + " bodies");
+  margin = std::max(margin, 0.0);
+  out.clear();
+  // Transforms and AABBs. FCL's computeAABB bounds a turned shape by the cube around
+  // its bounding sphere; the AABB is then set to the shape's tight one, grown by half
+  // the margin, so that two shapes closer than the margin are candidates.
+  const Vec3 grow = Vec3::Constant(0.5 * margin);
+  for (int slot = 0; slot < static_cast<int>(d.geo.size()); ++slot) {
+    Geo& g = d.geo[slot];
+    fcl::CollisionObjectd& obj = *d.objects[slot];
+    Vec3 half;
+    if (d.isBody(slot)) {
+      const BodyState& y = Y[d.slotIndex[slot]];
+      g.R = y.q.normalized().toRotationMatrix();
+      g.p = y.X;
+      obj.setTransform(g.R, g.p);
+      obj.computeAABB();
+      half = aabbHalfExtent(g);
+    } else {
+      half = d.surfaceHalfAabb[d.slotIndex[slot] ];
+    }
+    fcl::AABBd& box = const_cast<fcl::AABBd&>(obj.getAABB());  // FCL declares it mutable
+    box.min_ = g.p - half - grow;
+    box.max_ = g.p + half + grow;
+  }
+  d.manager.update();
+  d.pairs.clear();
+  d.manager.collide(&d, &Impl::collect);
+  std::sort(d.pairs.begin(), d.pairs.end());
+  for (const Impl::Pair& p : d.pairs) d.narrowphase(p, margin, out);
+}
+
+void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, std::vector<Contact>& out) {
+  const Geo& A = geo[pr.slotA];
+  const Geo& B = geo[pr.slotB];
+  fcl::CollisionObjectd* oA = objects[pr.slotA].get();
+  fcl::CollisionObjectd* oB = objects[pr.slotB].get();
+  Contact proto;
+  proto.a = pr.a;
+  proto.b = pr.b;
+  proto.surface = pr.surface;
+
+  result.clear();
+  fcl::collide(oA, oB, request, result);
+  if (result.numContacts() > 0) {
+    // FCL's normal points from o1 to o2; o1 is A's geometry unless FCL swapped them.
+    const fcl::Contactd& first = result.getContact(0);
+    const double sign = first.o1 == oA->collisionGeometry().get() ? 1.0 : -1.0;
+    const Vec3 n = sign * first.normal;
+    if (appendFacePatch(A, B, n, margin, proto, out) > 0) return;
+    for (size_t i = 0; i < result.numContacts(); ++i) {
+      const fcl::Contactd& fc = result.getContact(i);
+      Contact c = proto;
+      c.normal = (fc.o1 == oA->collisionGeometry().get() ? 1.0 : -1.0) * fc.normal;
+      c.depth = std::max(fc.penetration_depth, 0.0);
+      c.point = fc.pos;
+      if (A.type == ShapeType::Sphere && B.type == ShapeType::Sphere)  // midway in the overlap
+        c.point = A.p + c.normal * (A.radius - 0.5 * c.depth);
+      out.push_back(c);
+    }
+    return;
+  }
+  if (margin <= 0.0) return;
+  distanceResult.clear();
+  const double dist = fcl::distance(oA, oB, distanceRequest, distanceResult);
+  if (dist >= margin) return;
+  // Nearest points in the world frame, on A and on B (FCL keeps o1's first).
+  const bool swapped = distanceResult.o1 != oA->collisionGeometry().get();
+  Vec3 pA = distanceResult.nearest_points[swapped ? 1 : 0];
+  Vec3 pB = distanceResult.nearest_points[swapped ? 0 : 1];
+  const Vec3 gap = pB - pA;
+  // Touching within FCL's tolerance (or, rarely, overlapping by it): no direction from
+  // the nearest points, which FCL does not even fill when it finds an overlap.
+  const bool touching = !(dist > 0.0 && gap.norm() > 1e-12);
+  const Vec3 n = touching ? touchingNormal(A, B) : Vec3(gap.normalized());
+  if (appendFacePatch(A, B, n, margin, proto, out) > 0) return;
+  if (touching) {
+    pA = supportPoint(A, n);
+    pB = supportPoint(B, -n);
+  }
+  Contact c = proto;
+  c.normal = n;
+  c.depth = -std::max(dist, 0.0);
+  c.point = 0.5 * (pA + pB);
+  out.push_back(c);
+}
+
+}  // namespace rigid

@@ -11,10 +11,6 @@ constexpr double kContactDistance = 1e-9;  // m
 // Slip speed below which a body on a surface counts as not slipping.
 constexpr double kRestSpeed = 1e-9;  // m/s
 
-// Normal speed below which an impact does not bounce and a body may rest: what
-// gravity adds in two steps, so that a resting body's per-step sinking never bounces.
-double restingNormalSpeed(const Vec3& gravity, double h) { return 2.0 * gravity.norm() * h + 1e-9; }
-
 Mat3 cross(const Vec3& r) {
   Mat3 m;
   m << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
@@ -48,6 +44,8 @@ Vec3 slipVelocity(const Vec3& V, const Vec3& omega, const Vec3& r, const Vec3& n
 }
 
 }  // namespace
+
+double restingNormalSpeed(const Vec3& gravity, double h) { return 2.0 * gravity.norm() * h + 1e-9; }
 
 double combineCoefficients(double a, double b) { return std::sqrt(a * b); }
 

@@ -23,6 +23,10 @@ struct SurfaceContact {
 
 SurfaceContact surfaceContact(const Surface& surface, const BodyConstants& body, const BodyState& y);
 
+// Normal speed (m/s) below which an impact does not bounce and a body may rest: what
+// gravity adds in two steps, so that a resting body's per-step sinking never bounces.
+double restingNormalSpeed(const Vec3& gravity, double h);
+
 // Combination rule of a body's and a surface's coefficients: the geometric mean, so
 // that equal values combine to that value and a frictionless partner gives none.
 double combineCoefficients(double body, double surface);

@@ -1,7 +1,9 @@
 #include "world.h"
 
+#include <algorithm>
 #include <utility>
 
+#include "collision_response.h"
 #include "dynamics.h"
 #include "surface_contact.h"
 
@@ -15,6 +17,15 @@ WorldData initialData(const WorldModel& model) {
   d.input.assign(n, BodyInput{});
   d.aux.resize(n);
   d.contacts.assign(n, 0);
+  std::vector<bool> collides;
+  for (const BodyConstants& body : model.bodies) collides.push_back(body.collides);
+  // Bodies meet surfaces through the surface module (top faces, exact support and
+  // friction); FCL answers body-body contacts only.
+  if (std::count(collides.begin(), collides.end(), true) >= 2) {
+    WorldModel bodiesOnly = model;
+    bodiesOnly.surfaces.clear();
+    d.collision = std::make_shared<CollisionCache>(CollisionCache{CollisionDetector(bodiesOnly, collides), {}});
+  }
   d.scratch.stage.resize(n);
   d.scratch.next.resize(n);
   for (auto& k : d.scratch.k) k.resize(n);
@@ -38,13 +49,17 @@ void normaliseOrientations(std::vector<BodyState>& Y) {
 // holds a body that has come to rest.
 void respondToContacts(const WorldModel& model, WorldData& data, double h,
                        std::vector<BodyState>& after) {
-  if (model.surfaces.empty()) return;
-  for (size_t i = 0; i < after.size(); ++i) {
+  std::fill(data.contacts.begin(), data.contacts.end(), 0);
+  for (size_t i = 0; i < after.size() && !model.surfaces.empty(); ++i) {
     BodyAux& aux = data.aux[i];
     computeAuxiliaries(model.bodies[i], after[i], aux);
     accumulateAppliedForces(model, model.bodies[i], data.input[i], after[i], aux);
     data.contacts[i] =
         respondToSurfaces(model.surfaces, model.bodies[i], model.gravity, aux, h, data.Y[i], after[i]);
+  }
+  if (CollisionCache* c = data.collision.get()) {
+    c->detector.detect(after, 1e-6, c->contacts);
+    resolveContacts(model, c->contacts, restingNormalSpeed(model.gravity, h), after, data.contacts);
   }
 }
 
@@ -60,10 +75,13 @@ void advance(const WorldModel& model, WorldData& data, double tau, std::vector<B
   normaliseOrientations(next);
 }
 
-bool anyImpact(const WorldModel& model, double h, const std::vector<BodyState>& Y) {
-  if (model.surfaces.empty()) return false;
-  for (size_t i = 0; i < Y.size(); ++i)
+bool anyImpact(const WorldModel& model, WorldData& data, double h, const std::vector<BodyState>& Y) {
+  for (size_t i = 0; i < Y.size() && !model.surfaces.empty(); ++i)
     if (struckSurface(model.surfaces, model.bodies[i], model.gravity, h, Y[i])) return true;
+  if (CollisionCache* c = data.collision.get()) {
+    c->detector.detect(Y, 0.0, c->contacts);
+    return anyContactImpact(model, c->contacts, Y, restingNormalSpeed(model.gravity, h));
+  }
   return false;
 }
 
@@ -77,7 +95,7 @@ double locateImpact(const WorldModel& model, WorldData& data, double h, double t
   while (hi - lo > 1e-15 * tau) {
     const double mid = 0.5 * (lo + hi);
     advance(model, data, mid, next);
-    (anyImpact(model, h, next) ? hi : lo) = mid;
+    (anyImpact(model, data, h, next) ? hi : lo) = mid;
   }
   advance(model, data, lo, next);
   return lo;
@@ -102,7 +120,8 @@ StepResult step(const WorldModel& model, WorldData& data, double h) {
     const double rest = h - done;
     advance(model, data, rest, next);
     double taken = rest;
-    if (impacts < kMaxImpactsPerStep && anyImpact(model, h, next) && !anyImpact(model, h, data.Y))
+    if (impacts < kMaxImpactsPerStep && anyImpact(model, data, h, next) &&
+        !anyImpact(model, data, h, data.Y))
       taken = locateImpact(model, data, h, rest, next);
     respondToContacts(model, data, h, next);
     if (const StepResult r = commit(model, data, next); !r.ok) return r;

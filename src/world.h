@@ -2,6 +2,7 @@
 // (WorldData), kept apart as MuJoCo keeps mjModel and mjData.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,8 @@
 #include "surface.h"
 
 namespace rigid {
+
+struct CollisionCache;  // collision_response.h: the FCL detector and its contacts
 
 // Constants of one scene. Parameters of the FMU (mass, gravity, method, ...) change
 // them only between runs or, for tunable ones, between communication steps.
@@ -37,6 +40,9 @@ struct WorldData {
   std::vector<BodyInput> input;  // external loads (FMU inputs)
   std::vector<BodyAux> aux;    // auxiliaries of Y, valid after initialise() and step()
   std::vector<int> contacts;   // contact points of each body at the end of the last step
+  // Body-body collision detection, when at least two bodies can collide; shared by
+  // copies of the data (it holds no state between steps but FCL's objects).
+  std::shared_ptr<CollisionCache> collision;
   Scratch scratch;
 };
 

@@ -1,0 +1,30 @@
+// The seed's answer to collisions: an impulse j along the contact normal, with
+// restitution xi, only while the bodies approach; Coulomb friction impulses; and
+// penetration removed by moving bodies apart (positions only: no energy is added).
+#pragma once
+
+#include <vector>
+
+#include "collision_detection.h"
+
+namespace rigid {
+
+// Collision state of one world instance: the detector and the contacts it found.
+struct CollisionCache {
+  CollisionDetector detector;
+  std::vector<Contact> contacts;
+};
+
+// Whether some contact is an impact: overlapping while approaching faster than
+// restingSpeed (m/s). The step then locates the instant of impact.
+bool anyContactImpact(const WorldModel& model, const std::vector<Contact>& contacts,
+                      const std::vector<BodyState>& Y, double restingSpeed);
+
+// Impulses at every contact of Y until none approaches (Gauss-Seidel passes, so that
+// a chain of touching bodies passes an impact on, as in Newton's cradle), then moves
+// overlapping bodies apart along the normal in inverse proportion to their masses.
+// Adds each body's body-body contact points to count.
+void resolveContacts(const WorldModel& model, const std::vector<Contact>& contacts,
+                     double restingSpeed, std::vector<BodyState>& Y, std::vector<int>& count);
+
+}  // namespace rigid

@@ -75,6 +75,26 @@ double approach(const Side& a, const Side& b, const Vec3& n) {
 
 }  // namespace
 
+double halfThickness(const Shape& s) {
+  switch (s.type) {
+    case ShapeType::Sphere:
+    case ShapeType::Capsule: return s.radius;
+    case ShapeType::Box: return 0.5 * s.size.minCoeff();
+    case ShapeType::Cylinder: return std::min(s.radius, 0.5 * s.length);
+  }
+  return 0.0;
+}
+
+double boundingRadius(const Shape& s) {
+  switch (s.type) {
+    case ShapeType::Sphere: return s.radius;
+    case ShapeType::Capsule: return s.radius + 0.5 * s.length;
+    case ShapeType::Box: return 0.5 * s.size.norm();
+    case ShapeType::Cylinder: return std::hypot(s.radius, 0.5 * s.length);
+  }
+  return 0.0;
+}
+
 bool anyContactImpact(const WorldModel& model, const std::vector<Contact>& contacts,
                       const std::vector<BodyState>& Y, double restingSpeed) {
   for (const Contact& c : contacts) {
@@ -86,13 +106,69 @@ bool anyContactImpact(const WorldModel& model, const std::vector<Contact>& conta
   return false;
 }
 
-void resolveContacts(const WorldModel& model, const std::vector<Contact>& contacts,
+namespace {
+
+// One contact per touching pair: the centroid of its points, their mean normal and
+// the deepest depth. A face contact (a box resting on a box) then takes one impulse
+// through its patch's centre instead of corner impulses whose sequential order would
+// leave a spurious spin and make stacks rock.
+void mergePairs(const std::vector<Contact>& contacts, std::vector<Contact>& merged) {
+  merged.clear();
+  for (size_t i = 0; i < contacts.size();) {
+    Contact m = contacts[i];
+    Vec3 point = Vec3::Zero(), normal = Vec3::Zero();
+    int n = 0;
+    size_t k = i;
+    for (; k < contacts.size() && contacts[k].a == m.a && contacts[k].b == m.b &&
+           contacts[k].surface == m.surface;
+         ++k) {
+      if (contacts[k].depth < -kTouching) continue;
+      point += contacts[k].point;
+      normal += contacts[k].normal;
+      m.depth = std::max(m.depth, contacts[k].depth);
+      ++n;
+    }
+    i = k;
+    if (n == 0) continue;
+    m.point = point / n;
+    m.normal = normal.normalized();
+    merged.push_back(m);
+  }
+}
+
+// Bodies resting on a surface's top face take part as contacts with a static partner,
+// so that what bodies above press into them is answered in the same passes.
+void appendSurfaceContacts(const WorldModel& model, const std::vector<BodyState>& Y,
+                           std::vector<Contact>& out) {
+  for (size_t i = 0; i < Y.size(); ++i) {
+    for (size_t s = 0; s < model.surfaces.size(); ++s) {
+      const SurfaceContact sc = surfaceContact(model.surfaces[s], model.bodies[i], Y[i]);
+      if (!sc.overFace || sc.gap > kTouching) continue;
+      Contact c;
+      c.a = static_cast<int>(i);
+      c.surface = static_cast<int>(s);
+      c.normal = -sc.n;  // from the body into the surface
+      c.depth = -sc.gap;
+      const Mat3 R = Y[i].q.normalized().toRotationMatrix();
+      c.point = Y[i].X - supportDistance(model.bodies[i].shape, R, -sc.n) * sc.n;
+      out.push_back(c);
+    }
+  }
+}
+
+}  // namespace
+
+void resolveContacts(const WorldModel& model, const std::vector<Contact>& found,
                      double restingSpeed, std::vector<BodyState>& Y, std::vector<int>& count) {
-  for (const Contact& c : contacts) {
+  for (const Contact& c : found) {
     if (c.depth < -kTouching || c.b < 0) continue;
     ++count[c.a];
     ++count[c.b];
   }
+  std::vector<Contact> contacts;
+  mergePairs(found, contacts);
+  if (contacts.empty()) return;
+  appendSurfaceContacts(model, Y, contacts);
   for (int pass = 0; pass < kMaxPasses; ++pass) {
     bool approaching = false;
     for (const Contact& c : contacts) {
@@ -123,26 +199,13 @@ void resolveContacts(const WorldModel& model, const std::vector<Contact>& contac
     }
     if (!approaching) break;
   }
-  // Overlaps removed pair by pair (the deepest point of each pair), translation only.
-  for (size_t i = 0; i < contacts.size();) {
-    const Contact& first = contacts[i];
-    double depth = 0.0;
-    Vec3 n = first.normal;
-    size_t k = i;
-    for (; k < contacts.size() && contacts[k].a == first.a && contacts[k].b == first.b &&
-           contacts[k].surface == first.surface;
-         ++k) {
-      if (contacts[k].depth > depth) {
-        depth = contacts[k].depth;
-        n = contacts[k].normal;
-      }
-    }
-    i = k;
-    if (depth <= 0.0) continue;
-    const double wa = 1.0 / model.bodies[first.a].mass;
-    const double wb = first.b >= 0 ? 1.0 / model.bodies[first.b].mass : 0.0;
-    Y[first.a].X -= depth * wa / (wa + wb) * n;
-    if (first.b >= 0) Y[first.b].X += depth * wb / (wa + wb) * n;
+  // Overlaps removed pair by pair, translation only, in inverse proportion to mass.
+  for (const Contact& c : contacts) {
+    if (c.depth <= 0.0) continue;
+    const double wa = 1.0 / model.bodies[c.a].mass;
+    const double wb = c.b >= 0 ? 1.0 / model.bodies[c.b].mass : 0.0;
+    Y[c.a].X -= c.depth * wa / (wa + wb) * c.normal;
+    if (c.b >= 0) Y[c.b].X += c.depth * wb / (wa + wb) * c.normal;
   }
 }
 

@@ -13,7 +13,15 @@ namespace rigid {
 struct CollisionCache {
   CollisionDetector detector;
   std::vector<Contact> contacts;
+  double thinnest = 0.0;                // m, smallest half thickness of a colliding body
+  std::vector<double> boundingRadius;   // m, per body (0 for bodies that do not collide)
 };
+
+// Half the smallest dimension of a shape (m): how far a body may move between two
+// detections without passing through it unseen.
+double halfThickness(const Shape& shape);
+// Radius (m) of the sphere about the centre of mass that holds the shape.
+double boundingRadius(const Shape& shape);
 
 // Whether some contact is an impact: overlapping while approaching faster than
 // restingSpeed (m/s). The step then locates the instant of impact.

@@ -75,6 +75,16 @@ double approach(const Side& a, const Side& b, const Vec3& n) {
 
 }  // namespace
 
+namespace {
+
+// A body over a surface's top face is the surface module's (support, friction,
+// landing); FCL's contacts of that pair are left out.
+bool onTopFace(const WorldModel& model, const std::vector<BodyState>& Y, const Contact& c) {
+  return c.b < 0 && surfaceContact(model.surfaces[c.surface], model.bodies[c.a], Y[c.a]).overFace;
+}
+
+}  // namespace
+
 double halfThickness(const Shape& s) {
   switch (s.type) {
     case ShapeType::Sphere:
@@ -98,7 +108,7 @@ double boundingRadius(const Shape& s) {
 bool anyContactImpact(const WorldModel& model, const std::vector<Contact>& contacts,
                       const std::vector<BodyState>& Y, double restingSpeed) {
   for (const Contact& c : contacts) {
-    if (c.depth <= 0.0) continue;
+    if (c.depth <= 0.0 || onTopFace(model, Y, c)) continue;
     const Side a = sideOf(model, Y, c.a, c.point);
     const Side b = sideOf(model, Y, c.b, c.point);
     if (approach(a, b, c.normal) < -restingSpeed) return true;
@@ -112,10 +122,15 @@ namespace {
 // the deepest depth. A face contact (a box resting on a box) then takes one impulse
 // through its patch's centre instead of corner impulses whose sequential order would
 // leave a spurious spin and make stacks rock.
-void mergePairs(const std::vector<Contact>& contacts, std::vector<Contact>& merged) {
+void mergePairs(const WorldModel& model, const std::vector<BodyState>& Y,
+                const std::vector<Contact>& contacts, std::vector<Contact>& merged) {
   merged.clear();
   for (size_t i = 0; i < contacts.size();) {
     Contact m = contacts[i];
+    if (onTopFace(model, Y, m)) {
+      ++i;
+      continue;
+    }
     Vec3 point = Vec3::Zero(), normal = Vec3::Zero();
     int n = 0;
     size_t k = i;
@@ -166,7 +181,7 @@ void resolveContacts(const WorldModel& model, const std::vector<Contact>& found,
     ++count[c.b];
   }
   std::vector<Contact> contacts;
-  mergePairs(found, contacts);
+  mergePairs(model, Y, found, contacts);
   if (contacts.empty()) return;
   appendSurfaceContacts(model, Y, contacts);
   for (int pass = 0; pass < kMaxPasses; ++pass) {

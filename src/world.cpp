@@ -21,12 +21,12 @@ WorldData initialData(const WorldModel& model) {
   d.contacts.assign(n, 0);
   std::vector<bool> collides;
   for (const BodyConstants& body : model.bodies) collides.push_back(body.collides);
-  // Bodies meet surfaces through the surface module (top faces, exact support and
-  // friction); FCL answers body-body contacts only.
-  if (std::count(collides.begin(), collides.end(), true) >= 2) {
-    WorldModel bodiesOnly = model;
-    bodiesOnly.surfaces.clear();
-    d.collision = std::make_shared<CollisionCache>(CollisionCache{CollisionDetector(bodiesOnly, collides), {}, 0.0, {}});
+  // FCL answers body-body contacts and bodies against the sides and undersides of
+  // surfaces; on a surface's top face the surface module answers (exact support and
+  // friction), and FCL's contacts there are left out (resolveContacts).
+  const long colliding = std::count(collides.begin(), collides.end(), true);
+  if (colliding >= 2 || (colliding >= 1 && !model.surfaces.empty())) {
+    d.collision = std::make_shared<CollisionCache>(CollisionCache{CollisionDetector(model, collides), {}, 0.0, {}});
     d.collision->thinnest = std::numeric_limits<double>::infinity();
     for (const BodyConstants& body : model.bodies) {
       d.collision->boundingRadius.push_back(body.collides ? boundingRadius(body.shape) : 0.0);

@@ -113,3 +113,16 @@ def test_collision_switch(fmu_of):
     r = simulate_fmu(str(fmu_of(s)), stop_time=1.0, output_interval=0.05)
     np.testing.assert_allclose(r["a.position[1]"], 2.0 * r["time"], atol=1e-12)  # passes through
     assert np.all(r["a.contacts"] == 0)
+
+
+def test_ball_bounces_off_the_side_of_a_surface(fmu_of):
+    """Surfaces are boxes: their sides stop bodies too (FCL), with the seed's impulse."""
+    ball = scenes.body("ball", shape={"type": "sphere", "radius": R}, mass=1.0,
+                       position=[0, 0, 1.0], velocity=[5.0, 0, 0], restitution=0.5,
+                       staticFriction=0.0, kineticFriction=0.0)
+    s = scenes.scene("Wall", [ball], gravity=(0, 0, 0))
+    s["surfaces"] = [{"name": "wall", "min": [1.0, -1, 0], "max": [1.2, 1, 2],
+                      "staticFriction": 0.0, "kineticFriction": 0.0, "restitution": 0.5}]
+    r = simulate_fmu(str(fmu_of(s)), stop_time=0.5, output_interval=0.01)
+    assert np.max(r["ball.position[1]"]) <= 1.0 - R + 1e-9
+    assert r["ball.velocity[1]"][-1] == pytest.approx(-0.5 * 5.0, abs=1e-9)

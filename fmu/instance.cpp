@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "guid.h"
+#include "modules.h"
 #include "model_description_xml.h"
 #include "resource_location.h"
 
@@ -65,6 +66,10 @@ Instance* Instance::create(fmi2String instanceName, fmi2Type type, fmi2String gu
   } catch (const rigid::SceneError& e) {
     return refuse(std::string("the scene in the resources is refused: ") + e.what());
   }
+  const unsigned missing = rigid::modulesNeeded(scene.model) & ~rigid::modulesBuilt();
+  if (missing)
+    return refuse("the scene needs the " + rigid::moduleNames(missing) +
+                  " module(s), which this binary was built without; rebuild the FMU with build_fmu.sh");
   const std::string expected = sceneGuid(scene);
   if (!guid || expected != guid)
     return refuse("GUID " + std::string(guid ? guid : "(null)") +

@@ -18,7 +18,7 @@ cmake_bin=/usr/bin/cmake
 if [ ! -f "$build/CMakeCache.txt" ]; then
   "$cmake_bin" -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 fi
-"$cmake_bin" --build "$build" -j"$(nproc)" --target rigidfmu-describe rigidfmu_fmi2 >/dev/null
+"$cmake_bin" --build "$build" -j"$(nproc)" --target rigidfmu-describe rigidfmu_fmus >/dev/null
 "$cmake_bin" -DSCENE="$scene" -DOUT="$out" \
-  -DDESCRIBE="$build/rigidfmu-describe" -DLIBRARY="$build/rigidfmu_fmi2.so" \
+  -DDESCRIBE="$build/rigidfmu-describe" -DLIBRARY_DIR="$build" \
   -P "$root/cmake/package_fmu.cmake"

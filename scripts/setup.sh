@@ -6,7 +6,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
 debian_packages=(
-  build-essential cmake python3-venv
+  build-essential cmake python3-venv patchelf
   libeigen3-dev libfcl-dev nlohmann-json3-dev libgtest-dev
 )
 missing=()

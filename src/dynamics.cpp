@@ -1,7 +1,17 @@
 #include "dynamics.h"
 
-#include "surface_contact.h"
 #include "world.h"
+
+// Modules compiled in (see modules.h); all of them unless the build says otherwise.
+#ifndef RIGID_WITH_SURFACES
+#define RIGID_WITH_SURFACES 1
+#endif
+#ifndef RIGID_WITH_MEDIA
+#define RIGID_WITH_MEDIA 1
+#endif
+#if RIGID_WITH_SURFACES
+#include "surface_contact.h"
+#endif
 
 namespace rigid {
 
@@ -12,7 +22,9 @@ namespace {
 void accumulateForces(const WorldModel& model, const BodyConstants& body, const BodyInput& in,
                       const BodyState& y, BodyAux& aux) {
   accumulateAppliedForces(model, body, in, y, aux);
+#if RIGID_WITH_SURFACES
   if (!model.surfaces.empty()) addSurfaceForces(model.surfaces, body, y, aux);
+#endif
 }
 
 // 1/2 omega q with omega as the pure quaternion (0, omega); omega is in the world
@@ -28,7 +40,11 @@ void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
                              const BodyInput& in, const BodyState& y, BodyAux& aux) {
   aux.F = body.mass * model.gravity + in.force;
   aux.T = in.torque;
+#if RIGID_WITH_MEDIA
   for (const Medium& medium : model.media) addMediumForces(medium, body, y, model.gravity, aux);
+#else
+  (void)y;
+#endif
 }
 
 void evaluateDerivative(const WorldModel& model, const std::vector<BodyInput>& input,

@@ -5,11 +5,35 @@
 #include <limits>
 #include <utility>
 
-#include "collision_response.h"
 #include "dynamics.h"
+#include "modules.h"
+
+// Modules compiled in (see modules.h); all of them unless the build says otherwise.
+#ifndef RIGID_WITH_SURFACES
+#define RIGID_WITH_SURFACES 1
+#endif
+#ifndef RIGID_WITH_MEDIA
+#define RIGID_WITH_MEDIA 1
+#endif
+#ifndef RIGID_WITH_COLLISIONS
+#define RIGID_WITH_COLLISIONS 1
+#endif
+#if RIGID_WITH_COLLISIONS && !RIGID_WITH_SURFACES
+#error "the collision module needs the surface module"
+#endif
+#if RIGID_WITH_SURFACES
 #include "surface_contact.h"
+#endif
+#if RIGID_WITH_COLLISIONS
+#include "collision_response.h"
+#endif
 
 namespace rigid {
+
+unsigned modulesBuilt() {
+  return (RIGID_WITH_SURFACES ? kModuleSurfaces : 0u) | (RIGID_WITH_MEDIA ? kModuleMedia : 0u) |
+         (RIGID_WITH_COLLISIONS ? kModuleCollisions : 0u);
+}
 
 WorldData initialData(const WorldModel& model) {
   const size_t n = model.bodies.size();
@@ -19,6 +43,7 @@ WorldData initialData(const WorldModel& model) {
   d.input.assign(n, BodyInput{});
   d.aux.resize(n);
   d.contacts.assign(n, 0);
+#if RIGID_WITH_COLLISIONS
   std::vector<bool> collides;
   for (const BodyConstants& body : model.bodies) collides.push_back(body.collides);
   // FCL answers body-body contacts and bodies against the sides and undersides of
@@ -33,6 +58,7 @@ WorldData initialData(const WorldModel& model) {
       if (body.collides) d.collision->thinnest = std::min(d.collision->thinnest, halfThickness(body.shape));
     }
   }
+#endif
   d.scratch.stage.resize(n);
   d.scratch.next.resize(n);
   for (auto& k : d.scratch.k) k.resize(n);
@@ -54,9 +80,11 @@ void normaliseOrientations(std::vector<BodyState>& Y) {
 // Contact response: what happens at an instant rather than over the step. The
 // surfaces need the applied force at the new state to tell whether static friction
 // holds a body that has come to rest.
-void respondToContacts(const WorldModel& model, WorldData& data, double h,
+[[maybe_unused]] void respondToContacts(const WorldModel& model, WorldData& data, double h,
                        std::vector<BodyState>& after) {
   std::fill(data.contacts.begin(), data.contacts.end(), 0);
+  (void)model, (void)h, (void)after;
+#if RIGID_WITH_SURFACES
   for (size_t i = 0; i < after.size() && !model.surfaces.empty(); ++i) {
     BodyAux& aux = data.aux[i];
     computeAuxiliaries(model.bodies[i], after[i], aux);
@@ -64,10 +92,13 @@ void respondToContacts(const WorldModel& model, WorldData& data, double h,
     data.contacts[i] =
         respondToSurfaces(model.surfaces, model.bodies[i], model.gravity, aux, h, data.Y[i], after[i]);
   }
+#endif
+#if RIGID_WITH_COLLISIONS
   if (CollisionCache* c = data.collision.get()) {
     c->detector.detect(after, 1e-6, c->contacts);
     resolveContacts(model, c->contacts, restingNormalSpeed(model.gravity, h), after, data.contacts);
   }
+#endif
 }
 
 int firstNonFinite(const std::vector<BodyState>& Y) {
@@ -82,13 +113,18 @@ void advance(const WorldModel& model, WorldData& data, double tau, std::vector<B
   normaliseOrientations(next);
 }
 
-bool anyImpact(const WorldModel& model, WorldData& data, double h, const std::vector<BodyState>& Y) {
+[[maybe_unused]] bool anyImpact(const WorldModel& model, WorldData& data, double h, const std::vector<BodyState>& Y) {
+#if RIGID_WITH_SURFACES
   for (size_t i = 0; i < Y.size() && !model.surfaces.empty(); ++i)
     if (struckSurface(model.surfaces, model.bodies[i], model.gravity, h, Y[i])) return true;
+#endif
+#if RIGID_WITH_COLLISIONS
   if (CollisionCache* c = data.collision.get()) {
     c->detector.detect(Y, 0.0, c->contacts);
     return anyContactImpact(model, c->contacts, Y, restingNormalSpeed(model.gravity, h));
   }
+#endif
+  (void)model, (void)data, (void)h, (void)Y;
   return false;
 }
 
@@ -96,7 +132,7 @@ bool anyImpact(const WorldModel& model, WorldData& data, double h, const std::ve
 // from the start of the step, to 1e-15 of the step: the bounce then happens where
 // and when it should, whatever the step size. Leaves next = Y at that instant (just
 // before the penetration) and returns it.
-double locateImpact(const WorldModel& model, WorldData& data, double h, double tau,
+[[maybe_unused]] double locateImpact(const WorldModel& model, WorldData& data, double h, double tau,
                     std::vector<BodyState>& next) {
   double lo = 0.0, hi = tau;
   while (hi - lo > 1e-15 * tau) {
@@ -122,6 +158,10 @@ StepResult commit(const WorldModel& model, WorldData& data, std::vector<BodyStat
 // colliding body's half thickness, so that no overlap can be stepped over. Rotation
 // and acceleration within the step are bounded by the velocities at its start.
 int collisionSubsteps(const WorldData& data, double h) {
+#if !RIGID_WITH_COLLISIONS
+  (void)data, (void)h;
+  return 1;
+#else
   const CollisionCache* c = data.collision.get();
   if (!c) return 1;
   double travel = 0.0;
@@ -130,13 +170,19 @@ int collisionSubsteps(const WorldData& data, double h) {
       travel = std::max(travel, (data.aux[i].V.norm() + data.aux[i].omega.norm() * c->boundingRadius[i]) * h);
   constexpr double kMaxSubsteps = 100000;
   return static_cast<int>(std::min(kMaxSubsteps, std::max(1.0, std::ceil(travel / c->thinnest))));
+#endif
 }
 
 // One step of length h: impacts split it.
 StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
+  std::vector<BodyState>& next = data.scratch.next;
+#if !(RIGID_WITH_SURFACES || RIGID_WITH_COLLISIONS)
+  // Nothing to touch: the integrator alone.
+  advance(model, data, h, next);
+  return commit(model, data, next);
+#else
   // Impacts split the step: integrate to the instant of impact, answer it, go on.
   constexpr int kMaxImpactsPerStep = 16;
-  std::vector<BodyState>& next = data.scratch.next;
   double done = 0.0;
   for (int impacts = 0;; ++impacts) {
     const double rest = h - done;
@@ -150,6 +196,7 @@ StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
     done += taken;
     if (taken == rest || impacts >= kMaxImpactsPerStep) return {};
   }
+#endif
 }
 
 }  // namespace

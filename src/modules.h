@@ -1,0 +1,30 @@
+// The optional modules of the physics core. Which ones an FMU's binary carries is a
+// build choice: one binary per combination, built once, and the scene picks the
+// smallest one that has what it needs. Where a module is absent, the code that calls
+// it is compiled out (RIGID_WITH_* macros in world.cpp and dynamics.cpp), so an absent
+// feature costs nothing in the step and its libraries (FCL) are not linked.
+#pragma once
+
+#include <string>
+
+namespace rigid {
+
+struct WorldModel;
+
+enum ModuleBits : unsigned {
+  kModuleSurfaces = 1u << 0,    // surface_contact: support, friction, landing
+  kModuleMedia = 1u << 1,       // medium: buoyancy, drag
+  kModuleCollisions = 1u << 2,  // collision_detection (FCL), collision_response
+};
+
+// The modules a world needs. Collisions bring the surface module with them (the
+// response treats bodies resting on surfaces as static partners).
+unsigned modulesNeeded(const WorldModel& model);
+
+// The modules compiled into this binary.
+unsigned modulesBuilt();
+
+// "surfaces, media, collisions" style list of the bits set.
+std::string moduleNames(unsigned modules);
+
+}  // namespace rigid

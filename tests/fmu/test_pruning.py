@@ -1,0 +1,127 @@
+"""FMUs carry only what their scene needs: the smallest prebuilt binary that has the
+scene's modules, and every shared library beyond the C/C++ runtime bundled beside it."""
+import hashlib
+import os
+import pathlib
+import shutil
+import subprocess
+import tempfile
+import zipfile
+
+import pytest
+from fmpy import extract, read_model_description, simulate_fmu
+
+import scenes
+from harness import Slave
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+BUILD = pathlib.Path(os.environ.get("RIGIDFMU_BUILD", ROOT / "build"))
+RUNTIME = ("linux-vdso", "libc.so", "libm.so", "libstdc++.so", "libgcc_s.so", "ld-linux")
+
+
+def colliding_scene():
+    a = scenes.body("a", position=[0, 0, 1])
+    b = scenes.body("b", position=[0.5, 0, 1])
+    return scenes.scene("Colliding", [a, b])
+
+
+def gravity_only_scene():
+    return scenes.scene("GravityOnly", [scenes.body("ball", collision=False)])
+
+
+def media_scene():
+    s = scenes.scene("MediaOnly", [scenes.body("ball")])
+    s["media"] = [{"name": "tank", "type": "water", "min": [-1, -1, -1], "max": [1, 1, 1]}]
+    return s
+
+
+def runtime(name):
+    """The C and C++ runtime and the loader, which an FMU may take from the system."""
+    return os.path.basename(name).startswith(RUNTIME)
+
+
+def ldd(library, folder):
+    out = subprocess.run(["ldd", str(library)], capture_output=True, text=True, check=True,
+                         env=dict(os.environ, LD_LIBRARY_PATH=""), cwd=folder).stdout
+    rows = {}
+    for line in out.splitlines():
+        line = line.strip()
+        name = line.split()[0]
+        rows[name] = line.split("=>")[1].split("(")[0].strip() if "=>" in line else line
+    return rows
+
+
+def sha(path):
+    return hashlib.sha256(pathlib.Path(path).read_bytes()).hexdigest()
+
+
+def binary_of(fmu, unzip):
+    md = read_model_description(str(fmu))
+    return pathlib.Path(unzip, "binaries", "linux64", md.coSimulation.modelIdentifier + ".so")
+
+
+def test_colliding_fmu_resolves_every_library_inside_its_folder(fmu_of):
+    fmu = fmu_of(colliding_scene())
+    unzip = pathlib.Path(extract(str(fmu), unzipdir=tempfile.mkdtemp(prefix="rigid-ldd-")))
+    try:
+        libs = ldd(binary_of(fmu, unzip), unzip)
+        bundled = pathlib.Path(unzip, "binaries", "linux64").resolve()
+        assert any("libfcl" in name for name in libs), libs
+        for name, where in libs.items():
+            if runtime(name):
+                continue
+            assert "not found" not in where, (name, where)
+            assert pathlib.Path(where).resolve().parent == bundled, (name, where)
+        # and each bundled library finds its own dependencies there too
+        for lib in bundled.glob("lib*.so*"):
+            for name, where in ldd(lib, unzip).items():
+                if not runtime(name):
+                    assert pathlib.Path(where).resolve().parent == bundled, (lib.name, name, where)
+        # the unpacked FMU runs
+        r = simulate_fmu(str(unzip), stop_time=0.1, output_interval=0.05)
+        assert r["a.position[3]"][-1] < 1.0
+    finally:
+        shutil.rmtree(unzip, ignore_errors=True)
+
+
+def test_gravity_only_fmu_needs_no_collision_libraries(fmu_of):
+    fmu = fmu_of(gravity_only_scene())
+    with zipfile.ZipFile(fmu) as z:
+        binaries = [n for n in z.namelist() if n.startswith("binaries/linux64/") and not n.endswith("/")]
+    assert binaries == ["binaries/linux64/GravityOnly.so"]
+    unzip = pathlib.Path(extract(str(fmu), unzipdir=tempfile.mkdtemp(prefix="rigid-ldd-")))
+    try:
+        libs = ldd(binary_of(fmu, unzip), unzip)
+        for name in libs:
+            assert not any(k in name for k in ("fcl", "ccd", "octo")), libs
+            assert runtime(name), libs
+        # it is the binary built without any optional module
+        assert sha(binary_of(fmu, unzip)) == sha(BUILD / "rigidfmu_fmi2_0.so")
+    finally:
+        shutil.rmtree(unzip, ignore_errors=True)
+
+
+@pytest.mark.parametrize("make,mask", [(gravity_only_scene, 0), (media_scene, 2), (colliding_scene, 5)])
+def test_each_scene_gets_the_binary_of_its_modules(fmu_of, make, mask):
+    fmu = fmu_of(make())
+    unzip = extract(str(fmu), unzipdir=tempfile.mkdtemp(prefix="rigid-mask-"))
+    try:
+        assert sha(binary_of(fmu, unzip)) == sha(BUILD / f"rigidfmu_fmi2_{mask}.so")
+    finally:
+        shutil.rmtree(unzip, ignore_errors=True)
+
+
+def test_binary_without_a_needed_module_refuses_the_scene(fmu_of):
+    """A scene edited to need media, under a binary built without them: refused."""
+    s = Slave(fmu_of(gravity_only_scene()), instantiate=False)
+    try:
+        scene = pathlib.Path(s.dir, "resources", "scene.json")
+        scene.write_text(scene.read_text().rstrip().rstrip("}") +
+                         ', "media": [{"name": "tank", "type": "water", "min": [-1, -1, -1], "max": [1, 1, 1]}]}')
+        c = s.slave.fmi2Instantiate(b"x", 1, s.md.guid.encode(),
+                                    pathlib.Path(s.dir, "resources").as_uri().encode(),
+                                    s.log.callbacks, 0, 0)
+        assert not c
+        assert "needs the media module" in s.log.messages[-1][2]
+    finally:
+        shutil.rmtree(s.dir, ignore_errors=True)

@@ -157,16 +157,20 @@ std::string modelDescriptionXml(const rigid::Scene& scene) {
 
   // Outputs at a communication point depend on the state only: inputs act through
   // the integration of the step, never directly, hence empty dependencies.
-  x << "  <ModelStructure>\n    <Outputs>\n";
+  std::ostringstream outputs;
   for (const Variable& v : vars)
     if (v.causality == Causality::Output)
-      x << "      <Unknown index=\"" << v.vr + 1 << "\" dependencies=\"\"/>\n";
-  x << "    </Outputs>\n    <InitialUnknowns>\n";
+      outputs << "      <Unknown index=\"" << v.vr + 1 << "\" dependencies=\"\"/>\n";
+  x << "  <ModelStructure>\n";
+  if (!outputs.str().empty()) x << "    <Outputs>\n" << outputs.str() << "    </Outputs>\n";
+  // The schema wants at least one Unknown in a list: an empty list is left out.
+  std::ostringstream initial;
   for (const Variable& v : vars)
     if (v.causality == Causality::Output && v.initial == Initial::Calculated)
-      x << "      <Unknown index=\"" << v.vr + 1 << "\" dependencies=\""
-        << joinIndices(initialDependencies(vars, v, model)) << "\"/>\n";
-  x << "    </InitialUnknowns>\n  </ModelStructure>\n";
+      initial << "      <Unknown index=\"" << v.vr + 1 << "\" dependencies=\""
+              << joinIndices(initialDependencies(vars, v, model)) << "\"/>\n";
+  if (!initial.str().empty()) x << "    <InitialUnknowns>\n" << initial.str() << "    </InitialUnknowns>\n";
+  x << "  </ModelStructure>\n";
   x << "</fmiModelDescription>\n";
   return x.str();
 }

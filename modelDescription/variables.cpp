@@ -102,7 +102,10 @@ std::vector<Variable> modelVariables(const Scene& scene) {
     add({0, body.name + ".restitution", Quantity::Restitution, bi, 0, Causality::Parameter,
          Variability::Fixed, Initial::Exact, BaseType::Real, "1",
          body.name + ": coefficient of restitution xi, in [0, 1]"});
+    const rigid::BodyVariables& exposed = scene.variables[b];
     for (const VectorQuantity& q : kBodyVectors) {
+      const auto& chosen = q.causality == Causality::Input ? exposed.inputs : exposed.outputs;
+      if (!chosen.count(q.field)) continue;
       for (int c = 0; c < q.size; ++c) {
         const char* part = q.size == 4 ? kQuatPart[c] : kAxis[c];
         add({0, body.name + "." + q.field + "[" + std::to_string(c + 1) + "]", q.quantity, bi, c,
@@ -110,9 +113,10 @@ std::vector<Variable> modelVariables(const Scene& scene) {
              body.name + ": " + q.meaning + ", " + part});
       }
     }
-    add({0, body.name + ".contacts", Quantity::Contacts, bi, 0, Causality::Output,
-         Variability::Discrete, Initial::Calculated, BaseType::Integer, "",
-         body.name + ": number of contact points at the end of the last step (surfaces and bodies)"});
+    if (exposed.outputs.count("contacts"))
+      add({0, body.name + ".contacts", Quantity::Contacts, bi, 0, Causality::Output,
+           Variability::Discrete, Initial::Calculated, BaseType::Integer, "",
+           body.name + ": number of contact points at the end of the last step (surfaces and bodies)"});
   }
   return vars;
 }

@@ -1,6 +1,7 @@
 #include "scene.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -37,12 +38,14 @@ bool isIdentifier(const std::string& s) {
 }
 
 // Reads the fields of one JSON object; every key it does not know is refused, so that
-// a misspelt field is reported instead of silently taking its default.
+// a misspelt field is reported instead of silently taking its default (an empty list
+// of known keys reads an object whose keys were checked before).
 class Object {
  public:
   Object(const json& j, std::string path, std::initializer_list<const char*> known)
       : j_(j), path_(std::move(path)) {
     if (!j.is_object()) fail(path_.empty() ? "scene" : path_, "must be a JSON object");
+    if (known.size() == 0) return;  // fields already checked by another reader
     std::set<std::string> allowed(known.begin(), known.end());
     for (const auto& item : j.items()) {
       if (!allowed.count(item.key())) {
@@ -201,7 +204,8 @@ Mat3 readInertia(const json& j, const std::string& path) {
 BodyConstants readBody(const json& j, const std::string& path) {
   Object o(j, path,
            {"name", "shape", "mass", "inertia", "position", "orientation", "velocity",
-            "angularVelocity", "restitution", "staticFriction", "kineticFriction", "collision"});
+            "angularVelocity", "restitution", "staticFriction", "kineticFriction", "collision",
+            "outputs", "inputs"});
   BodyConstants b;
   b.name = identifier(o, "name");
   if (!o.has("shape")) fail(o.path("shape"), "is required");
@@ -272,6 +276,25 @@ Medium readMedium(const json& j, const std::string& path) {
   return m;
 }
 
+// A list of names, each one of `allowed`, no repeats; absent: all of `allowed`.
+std::set<std::string> nameList(const Object& o, const char* key, const std::vector<std::string>& allowed) {
+  if (!o.has(key)) return {allowed.begin(), allowed.end()};
+  const json& list = o.at(key);
+  if (!list.is_array()) fail(o.path(key), "must be an array of names");
+  std::string known;
+  for (const std::string& a : allowed) known += (known.empty() ? "" : ", ") + a;
+  std::set<std::string> names;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string path = o.path(key) + "[" + std::to_string(i) + "]";
+    if (!list[i].is_string()) fail(path, "must be a string, one of " + known);
+    const std::string name = list[i].get<std::string>();
+    if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
+      fail(path, "must be one of " + known + ", got \"" + name + "\"");
+    if (!names.insert(name).second) fail(path, "\"" + name + "\" is listed twice");
+  }
+  return names;
+}
+
 template <class T, class Read>
 std::vector<T> readList(const Object& o, const char* key, bool required, Read read) {
   std::vector<T> out;
@@ -321,6 +344,10 @@ Scene parseScene(const std::string& text) {
   }
   m.bodies = readList<BodyConstants>(o, "bodies", true, readBody);
   if (m.bodies.empty()) fail("bodies", "must hold at least one body");
+  for (size_t i = 0; i < m.bodies.size(); ++i) {
+    const Object body(o.at("bodies")[i], "bodies[" + std::to_string(i) + "]", {});
+    scene.variables.push_back({nameList(body, "outputs", kBodyOutputs), nameList(body, "inputs", kBodyInputs)});
+  }
   m.surfaces = readList<Surface>(o, "surfaces", false, readSurface);
   m.media = readList<Medium>(o, "media", false, readMedium);
   scene.canonicalJson = j.dump();

@@ -3,6 +3,7 @@
 // and the limit, e.g. "bodies[2].mass: must be > 0, got -1".
 #pragma once
 
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -16,8 +17,20 @@ class SceneError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The FMU variables a body exposes: the scene's optional body fields "outputs" and
+// "inputs", lists of the names below; by default all of them.
+inline const std::vector<std::string> kBodyOutputs = {
+    "position", "orientation", "velocity", "angularVelocity", "linearMomentum",
+    "angularMomentum", "contacts"};
+inline const std::vector<std::string> kBodyInputs = {"force", "torque"};
+struct BodyVariables {
+  std::set<std::string> outputs;
+  std::set<std::string> inputs;
+};
+
 struct Scene {
   WorldModel model;                  // name, gravity, solver, bodies, surfaces, media
+  std::vector<BodyVariables> variables;  // one per body
   std::string canonicalJson;         // the parsed file, keys sorted: identifies the scene
 };
 

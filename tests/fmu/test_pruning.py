@@ -125,3 +125,24 @@ def test_binary_without_a_needed_module_refuses_the_scene(fmu_of):
         assert "needs the media module" in s.log.messages[-1][2]
     finally:
         shutil.rmtree(s.dir, ignore_errors=True)
+
+
+def test_variables_by_need(fmu_of):
+    """A body may expose only some outputs and no inputs: the XML holds only those,
+    fmpy's validation finds nothing, and the run gives the same motion."""
+    from fmpy.validation import validate_fmu
+    full = scenes.projectile()
+    lean = scenes.projectile()
+    lean["name"] = "LeanProjectile"
+    lean["bodies"][0]["outputs"] = ["position", "orientation"]
+    lean["bodies"][0]["inputs"] = []
+    fmu = fmu_of(lean)
+    assert validate_fmu(str(fmu)) == []
+    names = {v.name for v in read_model_description(str(fmu)).modelVariables}
+    body = {n for n in names if n.startswith("ball.")}
+    assert body == {f"ball.position[{i}]" for i in (1, 2, 3)} | \
+        {f"ball.orientation[{i}]" for i in (1, 2, 3, 4)} | {"ball.mass", "ball.restitution"}
+    a = simulate_fmu(str(fmu), stop_time=1.0, output_interval=0.1)
+    b = simulate_fmu(str(fmu_of(full)), stop_time=1.0, output_interval=0.1)
+    for i in (1, 2, 3):
+        assert list(a[f"ball.position[{i}]"]) == list(b[f"ball.position[{i}]"])

@@ -334,3 +334,31 @@ TEST(Scene, WaterMediumTakesWatersValues) {
   EXPECT_EQ(s.model.media[0].density, 998.2);      // kg/m^3, water at 20 C
   EXPECT_EQ(s.model.media[0].viscosity, 1.002e-3);  // Pa s
 }
+
+TEST(Scene, ExposedVariablesDefaultToAll) {
+  const rigid::Scene s = rigid::parseScene(sceneWith());
+  ASSERT_EQ(s.variables.size(), 1u);
+  EXPECT_EQ(s.variables[0].outputs.size(), rigid::kBodyOutputs.size());
+  EXPECT_EQ(s.variables[0].inputs.size(), rigid::kBodyInputs.size());
+}
+
+TEST(Scene, ExposedVariablesAreRead) {
+  const rigid::Scene s = rigid::parseScene(sceneWith(R"(, "outputs": ["position", "orientation"], "inputs": [])"));
+  EXPECT_EQ(s.variables[0].outputs, (std::set<std::string>{"position", "orientation"}));
+  EXPECT_TRUE(s.variables[0].inputs.empty());
+}
+
+TEST(Scene, ExposedOutputUnknown) {
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "outputs": ["position", "speed"])"),
+                     "bodies[0].outputs[1]: must be one of position, orientation, velocity, "
+                     "angularVelocity, linearMomentum, angularMomentum, contacts, got \"speed\"");
+}
+
+TEST(Scene, ExposedInputTwice) {
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "inputs": ["force", "force"])"),
+                     "bodies[0].inputs[1]: \"force\" is listed twice");
+}
+
+TEST(Scene, ExposedListNotAnArray) {
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "inputs": "force")"), "bodies[0].inputs: must be an array of names");
+}

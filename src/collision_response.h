@@ -13,8 +13,9 @@ namespace rigid {
 struct CollisionCache {
   CollisionDetector detector;
   std::vector<Contact> contacts;
-  double thinnest = 0.0;                // m, smallest half thickness of a colliding body
+  std::vector<double> halfThickness;    // m, per body (0 for bodies that do not collide)
   std::vector<double> boundingRadius;   // m, per body (0 for bodies that do not collide)
+  std::vector<double> travel;           // m, scratch: each body's reach in a step
 };
 
 // Half the smallest dimension of a shape (m): how far a body may move between two

@@ -51,11 +51,10 @@ WorldData initialData(const WorldModel& model) {
   // friction), and FCL's contacts there are left out (resolveContacts).
   const long colliding = std::count(collides.begin(), collides.end(), true);
   if (colliding >= 2 || (colliding >= 1 && !model.surfaces.empty())) {
-    d.collision = std::make_shared<CollisionCache>(CollisionCache{CollisionDetector(model, collides), {}, 0.0, {}});
-    d.collision->thinnest = std::numeric_limits<double>::infinity();
+    d.collision = std::make_shared<CollisionCache>(CollisionCache{CollisionDetector(model, collides), {}, {}, {}, {}});
     for (const BodyConstants& body : model.bodies) {
+      d.collision->halfThickness.push_back(body.collides ? halfThickness(body.shape) : 0.0);
       d.collision->boundingRadius.push_back(body.collides ? boundingRadius(body.shape) : 0.0);
-      if (body.collides) d.collision->thinnest = std::min(d.collision->thinnest, halfThickness(body.shape));
     }
   }
 #endif
@@ -154,22 +153,43 @@ StepResult commit(const WorldModel& model, WorldData& data, std::vector<BodyStat
 
 
 // Continuous collision by sub-stepping: between two detections no colliding body may
-// move (translation plus rotation of its farthest point) more than the thinnest
-// colliding body's half thickness, so that no overlap can be stepped over. Rotation
-// and acceleration within the step are bounded by the velocities at its start.
-int collisionSubsteps(const WorldData& data, double h) {
+// move (translation plus rotation of its farthest point) more than the half thickness
+// of the thinner of itself and anything it could reach within the step, so that no
+// overlap can be stepped over. Bodies far from everything cost nothing. Motion within
+// the step is bounded by the velocities at its start.
+int collisionSubsteps(const WorldModel& model, const WorldData& data, double h) {
 #if !RIGID_WITH_COLLISIONS
-  (void)data, (void)h;
+  (void)model, (void)data, (void)h;
   return 1;
 #else
   const CollisionCache* c = data.collision.get();
   if (!c) return 1;
-  double travel = 0.0;
-  for (size_t i = 0; i < data.Y.size(); ++i)
+  const size_t n = data.Y.size();
+  std::vector<double>& travel = data.collision->travel;
+  travel.assign(n, 0.0);
+  for (size_t i = 0; i < n; ++i)
     if (c->boundingRadius[i] > 0.0)
-      travel = std::max(travel, (data.aux[i].V.norm() + data.aux[i].omega.norm() * c->boundingRadius[i]) * h);
+      travel[i] = (data.aux[i].V.norm() + data.aux[i].omega.norm() * c->boundingRadius[i]) * h;
+  double substeps = 1.0;
+  auto need = [&](double move, double thickness) {
+    if (move > thickness) substeps = std::max(substeps, std::ceil(move / thickness));
+  };
+  for (size_t i = 0; i < n; ++i) {
+    if (c->boundingRadius[i] <= 0.0) continue;
+    const double reach = c->boundingRadius[i] + travel[i];
+    for (size_t j = i + 1; j < n; ++j) {
+      if (c->boundingRadius[j] <= 0.0) continue;
+      if ((data.Y[i].X - data.Y[j].X).norm() > reach + c->boundingRadius[j] + travel[j]) continue;
+      need(std::max(travel[i], travel[j]), std::min(c->halfThickness[i], c->halfThickness[j]));
+    }
+    for (const Surface& s : model.surfaces) {
+      const Vec3 p = (s.R_WS.transpose() * (data.Y[i].X - s.centre)).cwiseAbs() - s.halfExtent;
+      if (p.cwiseMax(0.0).norm() > reach) continue;
+      need(travel[i], std::min(c->halfThickness[i], s.halfExtent.minCoeff()));
+    }
+  }
   constexpr double kMaxSubsteps = 100000;
-  return static_cast<int>(std::min(kMaxSubsteps, std::max(1.0, std::ceil(travel / c->thinnest))));
+  return static_cast<int>(std::min(kMaxSubsteps, substeps));
 #endif
 }
 
@@ -202,7 +222,7 @@ StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
 }  // namespace
 
 StepResult step(const WorldModel& model, WorldData& data, double h) {
-  const int n = collisionSubsteps(data, h);
+  const int n = collisionSubsteps(model, data, h);
   for (int k = 0; k < n; ++k)
     if (const StepResult r = stepOnce(model, data, h / n); !r.ok) return r;
   return {};

@@ -1,0 +1,90 @@
+"""The README's table of example FMUs: for each scene in scripts/scenes/, the FMU's
+size, its bundled libraries, its number of variables and its cost per internal step
+(median of repeated runs through fmpy, 1 s communication steps). Rewrites the part of
+README.md between the fmu-table markers, or prints the table with --print.
+
+usage: fmu_table.py [--print] [--quick] [--build BUILD_DIR]"""
+import argparse
+import os
+import pathlib
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import zipfile
+
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+BEGIN, END = "<!-- fmu-table:begin -->", "<!-- fmu-table:end -->"
+
+
+def cost_per_step_us(fmu, md, seconds, repeats):
+    unzip = extract(str(fmu))
+    slave = FMU2Slave(guid=md.guid, unzipDirectory=unzip,
+                      modelIdentifier=md.coSimulation.modelIdentifier, instanceName="table")
+    slave.instantiate()
+    slave.setupExperiment(startTime=0.0)
+    slave.enterInitializationMode()
+    slave.exitInitializationMode()
+    step = md.defaultExperiment.stepSize if md.defaultExperiment else 1e-3
+    steps_per_call = round(0.5 / float(step))
+    t, runs = 0.0, []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        for _ in range(seconds * 2):
+            slave.doStep(t, 0.5)
+            t += 0.5
+        runs.append((time.perf_counter() - start) / (seconds * 2 * steps_per_call) * 1e6)
+    slave.terminate()
+    slave.freeInstance()
+    return statistics.median(runs)
+
+
+def table(build_dir, quick):
+    seconds, repeats = (1, 1) if quick else (5, 5)
+    rows = ["| scene | FMU size | bundled libraries | variables | cost per step |",
+            "|---|---:|---|---:|---:|"]
+    with tempfile.TemporaryDirectory() as folder:
+        for scene in sorted((ROOT / "scripts" / "scenes").glob("*.json")):
+            fmu = pathlib.Path(folder, scene.stem + ".fmu")
+            subprocess.run([str(ROOT / "scripts" / "build_fmu.sh"), str(scene), str(fmu)], check=True,
+                           stdout=subprocess.DEVNULL,
+                           env=dict(os.environ, RIGIDFMU_SKIP_SETUP="1", RIGIDFMU_BUILD=str(build_dir)))
+            md = read_model_description(str(fmu))
+            with zipfile.ZipFile(fmu) as z:
+                libs = sorted(pathlib.Path(n).name for n in z.namelist()
+                              if n.startswith("binaries/linux64/lib"))
+            us = cost_per_step_us(fmu, md, seconds, repeats)
+            rows.append(f"| `{scene.name}` ({md.modelName}) | {fmu.stat().st_size / 1024:.0f} KiB | "
+                        f"{', '.join(libs) if libs else 'none'} | {len(md.modelVariables)} | {us:.2f} µs |")
+    return "\n".join(rows)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--print", action="store_true", help="print the table instead of updating README.md")
+    p.add_argument("--quick", action="store_true", help="one short run per scene")
+    p.add_argument("--build", default=os.environ.get("RIGIDFMU_BUILD", ROOT / "build"))
+    args = p.parse_args()
+    text = table(pathlib.Path(args.build), args.quick)
+    if args.print:
+        print(text)
+        return 0
+    readme = ROOT / "README.md"
+    old = readme.read_text()
+    if BEGIN not in old or END not in old:
+        print(f"README.md has no {BEGIN} ... {END} markers", file=sys.stderr)
+        return 1
+    new = re.sub(re.escape(BEGIN) + ".*?" + re.escape(END), lambda _: f"{BEGIN}\n{text}\n{END}", old,
+                 flags=re.S)
+    readme.write_text(new)
+    print(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,31 @@
+"""The reporting scripts run and print their figures (quick mode; no timing asserted)."""
+import os
+import pathlib
+import re
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+ENV = dict(os.environ, RIGIDFMU_SKIP_SETUP="1")
+
+
+def run(*args):
+    return subprocess.run([sys.executable, *args], check=True, capture_output=True, text=True,
+                          env=ENV, cwd=ROOT).stdout
+
+
+def test_bench_pruning_prints_three_costs_and_ratios():
+    out = run("scripts/bench_pruning.py", "--quick")
+    rows = re.findall(r"^(bare integrator \(C\+\+\)|gravity-only FMU|every feature, far away)\s+"
+                      r"([0-9.]+)\s+([0-9.]+)$", out, re.M)
+    assert [r[0] for r in rows] == ["bare integrator (C++)", "gravity-only FMU", "every feature, far away"]
+    assert float(rows[0][2]) == 1.0 and all(float(r[1]) > 0 for r in rows)
+
+
+def test_fmu_table_lists_every_example_scene():
+    out = run("scripts/fmu_table.py", "--print", "--quick")
+    scenes = sorted(p.name for p in (ROOT / "scripts" / "scenes").glob("*.json"))
+    lines = [l for l in out.splitlines() if l.startswith("| `")]
+    assert [re.match(r"\| `([^`]+)`", l).group(1) for l in lines] == scenes
+    spinner = next(l for l in lines if "spinner.json" in l)
+    assert "| none |" in spinner  # a lone body ships no extra library

@@ -16,10 +16,8 @@ import statistics
 import subprocess
 import sys
 import tempfile
-import time
 
-from fmpy import extract, read_model_description
-from fmpy.fmi2 import FMU2Slave
+from fmu_timing import seconds_per_internal_step
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
@@ -47,24 +45,7 @@ def build(scene, folder, build_dir):
 
 
 def fmu_ns_per_step(fmu, seconds, repeats):
-    md = read_model_description(str(fmu))
-    unzip = extract(str(fmu))
-    slave = FMU2Slave(guid=md.guid, unzipDirectory=unzip,
-                      modelIdentifier=md.coSimulation.modelIdentifier, instanceName="bench")
-    slave.instantiate()
-    slave.setupExperiment(startTime=0.0)
-    slave.enterInitializationMode()
-    slave.exitInitializationMode()
-    t, runs = 0.0, []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        for _ in range(seconds):
-            slave.doStep(t, 1.0)
-            t += 1.0
-        runs.append((time.perf_counter() - start) / (seconds * 1000) * 1e9)
-    slave.terminate()
-    slave.freeInstance()
-    return statistics.median(runs)
+    return seconds_per_internal_step(fmu, 1.0, seconds, repeats) * 1e9
 
 
 def bare_ns_per_step(build_dir, steps, repeats):

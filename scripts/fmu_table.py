@@ -8,40 +8,17 @@ import argparse
 import os
 import pathlib
 import re
-import statistics
 import subprocess
 import sys
 import tempfile
-import time
 import zipfile
 
-from fmpy import extract, read_model_description
-from fmpy.fmi2 import FMU2Slave
+from fmpy import read_model_description
+
+from fmu_timing import seconds_per_internal_step
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 BEGIN, END = "<!-- fmu-table:begin -->", "<!-- fmu-table:end -->"
-
-
-def cost_per_step_us(fmu, md, seconds, repeats):
-    unzip = extract(str(fmu))
-    slave = FMU2Slave(guid=md.guid, unzipDirectory=unzip,
-                      modelIdentifier=md.coSimulation.modelIdentifier, instanceName="table")
-    slave.instantiate()
-    slave.setupExperiment(startTime=0.0)
-    slave.enterInitializationMode()
-    slave.exitInitializationMode()
-    step = md.defaultExperiment.stepSize if md.defaultExperiment else 1e-3
-    steps_per_call = round(0.5 / float(step))
-    t, runs = 0.0, []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        for _ in range(seconds * 2):
-            slave.doStep(t, 0.5)
-            t += 0.5
-        runs.append((time.perf_counter() - start) / (seconds * 2 * steps_per_call) * 1e6)
-    slave.terminate()
-    slave.freeInstance()
-    return statistics.median(runs)
 
 
 def table(build_dir, quick):
@@ -58,7 +35,7 @@ def table(build_dir, quick):
             with zipfile.ZipFile(fmu) as z:
                 libs = sorted(pathlib.Path(n).name for n in z.namelist()
                               if n.startswith("binaries/linux64/lib"))
-            us = cost_per_step_us(fmu, md, seconds, repeats)
+            us = seconds_per_internal_step(fmu, 0.5, seconds * 2, repeats) * 1e6
             rows.append(f"| `{scene.name}` ({md.modelName}) | {fmu.stat().st_size / 1024:.0f} KiB | "
                         f"{', '.join(libs) if libs else 'none'} | {len(md.modelVariables)} | {us:.2f} µs |")
     return "\n".join(rows)

@@ -2,13 +2,7 @@
 
 #include "world.h"
 
-// Modules compiled in (see modules.h); all of them unless the build says otherwise.
-#ifndef RIGID_WITH_SURFACES
-#define RIGID_WITH_SURFACES 1
-#endif
-#ifndef RIGID_WITH_MEDIA
-#define RIGID_WITH_MEDIA 1
-#endif
+#include "module_switches.h"
 #if RIGID_WITH_SURFACES
 #include "surface_contact.h"
 #endif

@@ -8,19 +8,7 @@
 #include "dynamics.h"
 #include "modules.h"
 
-// Modules compiled in (see modules.h); all of them unless the build says otherwise.
-#ifndef RIGID_WITH_SURFACES
-#define RIGID_WITH_SURFACES 1
-#endif
-#ifndef RIGID_WITH_MEDIA
-#define RIGID_WITH_MEDIA 1
-#endif
-#ifndef RIGID_WITH_COLLISIONS
-#define RIGID_WITH_COLLISIONS 1
-#endif
-#if RIGID_WITH_COLLISIONS && !RIGID_WITH_SURFACES
-#error "the collision module needs the surface module"
-#endif
+#include "module_switches.h"
 #if RIGID_WITH_SURFACES
 #include "surface_contact.h"
 #endif

@@ -285,6 +285,7 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
   // Internal steps of solver.step, the last one shortened; a remainder within
   // rounding of zero is not a step of its own. Times are tc + k*step, never summed.
   const long n = std::max(1L, static_cast<long>(std::ceil(ratio - 1e-9)));
+  data_.steps = 0;
   for (long k = 0; k < n; ++k) {
     const double from = static_cast<double>(k) * model_.maxStep;
     const double to = k + 1 == n ? h : static_cast<double>(k + 1) * model_.maxStep;
@@ -293,11 +294,17 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
       time_ = lastSuccessfulTime_ = tc + from;
       state_ = kStepFailed;
       wantsToTerminate_ = true;
+      const std::string cause =
+          r.body >= 0
+              ? "the state of body " + model_.bodies[r.body].name + " is not finite"
+              : "the adaptive method could not meet solver.tolerance = " + num(model_.tolerance) +
+                    " (its step fell below 1e-14 of the step; raise the tolerance)";
+      const std::string hint =
+          r.body >= 0 ? " (inputs or parameters out of range, e.g. " + model_.bodies[r.body].name + ".force)"
+                      : "";
       log(fmi2Discard, "logStatusDiscard",
-          "fmi2DoStep: the state of body " + model_.bodies[r.body].name +
-              " is not finite after the internal step from t = " + num(tc + from) + " to " +
-              num(tc + to) + " s (inputs or parameters out of range, e.g. " +
-              model_.bodies[r.body].name + ".force); the FMU stays at t = " + num(time_) +
+          "fmi2DoStep: " + cause + " after the internal step from t = " + num(tc + from) + " to " +
+              num(tc + to) + " s" + hint + "; the FMU stays at t = " + num(time_) +
               " s and must be reset or terminated");
       return fmi2Discard;
     }

@@ -93,6 +93,15 @@ std::vector<Variable> modelVariables(const Scene& scene) {
   add({0, "solver.step", Quantity::SolverStep, -1, 0, Causality::Parameter, Variability::Fixed,
        Initial::Exact, BaseType::Real, "s",
        "largest internal step; a communication step is split into steps of at most this"});
+  add({0, "solver.tolerance", Quantity::SolverTolerance, -1, 0, Causality::Parameter,
+       Variability::Fixed, Initial::Exact, BaseType::Real, "1",
+       "local error tolerance of the adaptive method dopri5 (absolute and relative); 0: fixed steps"});
+  add({0, "solver.steps", Quantity::SolverSteps, -1, 0, Causality::Output, Variability::Discrete,
+       Initial::Calculated, BaseType::Integer, "",
+       "internal steps taken in the last communication step (sub-steps included)"});
+  add({0, "solver.errorEstimate", Quantity::SolverErrorEstimate, -1, 0, Causality::Output,
+       Variability::Discrete, Initial::Calculated, BaseType::Real, "1",
+       "the adaptive method's last local error estimate; 0 for fixed-step methods"});
 
   for (size_t b = 0; b < scene.model.bodies.size(); ++b) {
     const BodyConstants& body = scene.model.bodies[b];
@@ -150,6 +159,9 @@ double readValue(const Variable& v, const WorldModel& model, const WorldData& da
     case Quantity::Gravity: return model.gravity[c];
     case Quantity::SolverMethod: return static_cast<double>(static_cast<int>(model.method));
     case Quantity::SolverStep: return model.maxStep;
+    case Quantity::SolverTolerance: return model.tolerance;
+    case Quantity::SolverSteps: return setup ? 0.0 : static_cast<double>(data.steps);
+    case Quantity::SolverErrorEstimate: return setup ? 0.0 : data.errorEstimate;
     case Quantity::Mass: return model.bodies[b].mass;
     case Quantity::Restitution: return model.bodies[b].restitution;
     case Quantity::Position:
@@ -199,6 +211,13 @@ std::string writeValue(const Variable& v, double value, WorldModel& model, World
       if (!(value > 0.0)) return v.name + ": must be > 0 s, got " + fmt(value);
       model.maxStep = value;
       return "";
+    case Quantity::SolverTolerance:
+      if (value < 0.0) return v.name + ": must be >= 0, got " + fmt(value);
+      model.tolerance = value;
+      return "";
+    case Quantity::SolverSteps:
+    case Quantity::SolverErrorEstimate:
+      return v.name + ": a calculated output; it cannot be set";
     case Quantity::Mass:
       if (!(value > 0.0)) return v.name + ": must be > 0 kg, got " + fmt(value);
       rigid::setMass(model.bodies[b], value);

@@ -11,6 +11,8 @@ void setMass(BodyConstants& body, double mass) {
     const Vec3 I = solidPrincipalInertia(body.shape, mass);
     body.Ibody = I.asDiagonal();
     body.IbodyInv = I.cwiseInverse().asDiagonal();
+    body.principalMoments = I;
+    body.principalFrame = Quat::Identity();
   }
 }
 
@@ -22,6 +24,10 @@ void setInertia(BodyConstants& body, const Mat3& Ibody) {
   Eigen::SelfAdjointEigenSolver<Mat3> eig(Ibody);
   body.IbodyInv = eig.eigenvectors() * eig.eigenvalues().cwiseInverse().asDiagonal() *
                   eig.eigenvectors().transpose();
+  Mat3 axes = eig.eigenvectors();
+  if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);  // a rotation, not a reflection
+  body.principalMoments = eig.eigenvalues();
+  body.principalFrame = Quat(axes).normalized();
 }
 
 void computeAuxiliaries(const BodyConstants& body, const BodyState& y, BodyAux& aux) {

@@ -24,6 +24,8 @@ struct BodyConstants {
   double mass = 1.0;                  // M, kg
   Mat3 Ibody = Mat3::Identity();      // kg m^2, about the centre of mass, body frame
   Mat3 IbodyInv = Mat3::Identity();   // 1/(kg m^2); inverted once here, never per step
+  Vec3 principalMoments = Vec3::Ones();         // kg m^2, eigenvalues of Ibody
+  Quat principalFrame = Quat::Identity();       // principal axes -> body frame
   bool inertiaFromShape = true;       // Ibody is the solid shape's and follows mass
   double restitution = 0.5;           // xi, 1
   double staticFriction = 0.6;        // mu_s, 1

@@ -1,5 +1,9 @@
 #include "integrator.h"
 
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
 #include "dynamics.h"
 #include "world.h"
 
@@ -25,7 +29,10 @@ void eulerStep(const WorldModel& m, WorldData& d, double h, std::vector<BodyStat
 }
 
 void rk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
-  auto& [k1, k2, k3, k4] = d.scratch.k;
+  std::vector<BodyDerivative>& k1 = d.scratch.k[0];
+  std::vector<BodyDerivative>& k2 = d.scratch.k[1];
+  std::vector<BodyDerivative>& k3 = d.scratch.k[2];
+  std::vector<BodyDerivative>& k4 = d.scratch.k[3];
   std::vector<BodyState>& stage = d.scratch.stage;
   evaluateDerivative(m, d.input, d.Y, d.aux, k1);
   addScaled(d.Y, 0.5 * h, k1, stage);
@@ -47,13 +54,236 @@ void rk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>
   }
 }
 
+// Semi-implicit (symplectic) Euler, the game engines' choice: the momenta take the
+// forces of the step's start, then X moves with the new velocity and q turns by the
+// new angular velocity (an exact rotation, so q stays unit).
+void symplecticEulerStep(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
+  std::vector<BodyDerivative>& k1 = d.scratch.k[0];
+  evaluateDerivative(m, d.input, d.Y, d.aux, k1);
+  for (size_t i = 0; i < d.Y.size(); ++i) {
+    const BodyState& y = d.Y[i];
+    BodyState& out = next[i];
+    out.P = y.P + h * k1[i].dP;
+    out.L = y.L + h * k1[i].dL;
+    out.X = y.X + h / m.bodies[i].mass * out.P;
+    out.q = rotationQuaternion(h * (d.aux[i].Iinv * out.L)) * y.q;
+  }
+}
+
+// The free rotation of one body for a time tau with world angular momentum L, split
+// into exact rotations about its principal axes (Dullweber, Leimkuhler & McLachlan
+// 1997): R1(tau/2) R2(tau/2) R3(tau) R2(tau/2) R1(tau/2). Each keeps L and one term
+// of the kinetic energy exactly, so |L| is exact and the energy error stays bounded.
+Quat freeRotation(const BodyConstants& body, const Quat& q, const Vec3& L, double tau) {
+  static constexpr int kAxis[5] = {0, 1, 2, 1, 0};
+  static constexpr double kFraction[5] = {0.5, 0.5, 1.0, 0.5, 0.5};
+  Quat qP = q * body.principalFrame;  // principal axes -> world
+  for (int s = 0; s < 5; ++s) {
+    const int k = kAxis[s];
+    const double Lk = (qP.conjugate() * L)[k];  // body (principal) component
+    const double theta = kFraction[s] * tau * Lk / body.principalMoments[k];
+    Vec3 axis = Vec3::Zero();
+    axis[k] = 1.0;
+    qP = qP * Quat(Eigen::AngleAxisd(theta, axis));
+  }
+  return (qP * body.principalFrame.conjugate()).normalized();
+}
+
+// Kick-drift-kick: half a step of forces on the momenta, the positions drift and the
+// orientation turns freely with the half-kicked L, half a step of the new forces.
+void splittingStep(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
+  std::vector<BodyDerivative>& k = d.scratch.k[0];
+  evaluateDerivative(m, d.input, d.Y, d.aux, k);
+  for (size_t i = 0; i < d.Y.size(); ++i) {
+    const BodyState& y = d.Y[i];
+    BodyState& out = next[i];
+    out.P = y.P + 0.5 * h * k[i].dP;
+    out.L = y.L + 0.5 * h * k[i].dL;
+    out.X = y.X + h / m.bodies[i].mass * out.P;
+    out.q = freeRotation(m.bodies[i], y.q, out.L, h);
+  }
+  evaluateDerivative(m, d.input, next, d.aux, k);
+  for (size_t i = 0; i < d.Y.size(); ++i) {
+    next[i].P += 0.5 * h * k[i].dP;
+    next[i].L += 0.5 * h * k[i].dL;
+  }
+}
+
+// dexp^-1_u(v) on so(3), truncated after the terms a fourth-order method needs.
+Vec3 dexpInverse(const Vec3& u, const Vec3& v) {
+  return v - 0.5 * u.cross(v) + (1.0 / 12.0) * u.cross(u.cross(v));
+}
+
+// Runge-Kutta-Munthe-Kaas 4: the classic tableau applied to the rotation vector of
+// q = exp(Theta) q0 (world frame) and to X, P, L; q moves only by exponentials, so it
+// is unit by construction.
+void lieRk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
+  // Each stage's rotation increment h dexp^-1(u, omega) is kept in its dq.head<3>().
+  std::vector<BodyDerivative>* ks[4] = {&d.scratch.k[0], &d.scratch.k[1], &d.scratch.k[2], &d.scratch.k[3]};
+  std::vector<BodyDerivative>& k1 = *ks[0];
+  std::vector<BodyDerivative>& k2 = *ks[1];
+  std::vector<BodyDerivative>& k3 = *ks[2];
+  std::vector<BodyDerivative>& k4 = *ks[3];
+  std::vector<BodyState>& stage = d.scratch.stage;
+  std::vector<Vec3>& theta = d.scratch.u;
+  const size_t n = d.Y.size();
+  const double c[4] = {0.0, 0.5, 0.5, 1.0};
+  for (int s = 0; s < 4; ++s) {
+    std::vector<BodyDerivative>& k = *ks[s];
+    if (s == 0) {
+      evaluateDerivative(m, d.input, d.Y, d.aux, k);
+      for (size_t i = 0; i < n; ++i) k[i].dq.head<3>() = h * d.aux[i].omega;
+      continue;
+    }
+    const std::vector<BodyDerivative>& prev = *ks[s - 1];
+    for (size_t i = 0; i < n; ++i) {
+      const BodyState& y = d.Y[i];
+      const Vec3 u = c[s] * Vec3(prev[i].dq.head<3>());
+      theta[i] = u;
+      stage[i].X = y.X + c[s] * h * prev[i].dX;
+      stage[i].P = y.P + c[s] * h * prev[i].dP;
+      stage[i].L = y.L + c[s] * h * prev[i].dL;
+      stage[i].q = rotationQuaternion(u) * y.q;
+    }
+    evaluateDerivative(m, d.input, stage, d.aux, k);
+    for (size_t i = 0; i < n; ++i) k[i].dq.head<3>() = h * dexpInverse(theta[i], d.aux[i].omega);
+  }
+  const double w1 = h / 6.0, w2 = h / 3.0;
+  for (size_t i = 0; i < n; ++i) {
+    const BodyState& y = d.Y[i];
+    BodyState& out = next[i];
+    out.X = y.X + (w1 * k1[i].dX + w2 * k2[i].dX + w2 * k3[i].dX + w1 * k4[i].dX);
+    out.P = y.P + (w1 * k1[i].dP + w2 * k2[i].dP + w2 * k3[i].dP + w1 * k4[i].dP);
+    out.L = y.L + (w1 * k1[i].dL + w2 * k2[i].dL + w2 * k3[i].dL + w1 * k4[i].dL);
+    const Vec3 Theta = (Vec3(k1[i].dq.head<3>()) + 2.0 * Vec3(k2[i].dq.head<3>()) +
+                        2.0 * Vec3(k3[i].dq.head<3>()) + Vec3(k4[i].dq.head<3>())) / 6.0;
+    out.q = rotationQuaternion(Theta) * y.q;
+  }
+}
+
+// Dormand-Prince 5(4) (Hairer, Norsett & Wanner, Solving ODEs I, table 5.2).
+constexpr double kC[7] = {0.0, 1.0 / 5, 3.0 / 10, 4.0 / 5, 8.0 / 9, 1.0, 1.0};
+constexpr double kA[7][6] = {
+    {},
+    {1.0 / 5},
+    {3.0 / 40, 9.0 / 40},
+    {44.0 / 45, -56.0 / 15, 32.0 / 9},
+    {19372.0 / 6561, -25360.0 / 2187, 64448.0 / 6561, -212.0 / 729},
+    {9017.0 / 3168, -355.0 / 33, 46732.0 / 5247, 49.0 / 176, -5103.0 / 18656},
+    {35.0 / 384, 0.0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84},
+};
+constexpr double kB4[7] = {5179.0 / 57600, 0.0, 7571.0 / 16695, 393.0 / 640,
+                           -92097.0 / 339200, 187.0 / 2100, 1.0 / 40};
+
+// out = y + h sum_j a[j] k[j], j < count.
+void combine(const std::vector<BodyState>& y, double h, const double* a, int count,
+             const std::vector<BodyDerivative>* k, std::vector<BodyState>& out) {
+  for (size_t i = 0; i < y.size(); ++i) {
+    BodyState& o = out[i];
+    o = y[i];
+    for (int j = 0; j < count; ++j) {
+      if (a[j] == 0.0) continue;
+      const double w = h * a[j];
+      o.X += w * k[j][i].dX;
+      o.q.coeffs() += w * k[j][i].dq;
+      o.P += w * k[j][i].dP;
+      o.L += w * k[j][i].dL;
+    }
+  }
+}
+
+// One Dormand-Prince step from y: the 5th-order solution into y5, the 4th-order one
+// into y4 (the 7th stage is the derivative at y5, first-same-as-last).
+void dopri5Step(const WorldModel& m, WorldData& d, const std::vector<BodyState>& y, double h,
+                std::vector<BodyState>& y5, std::vector<BodyState>& y4) {
+  std::vector<BodyDerivative>* k = d.scratch.k;
+  std::vector<BodyState>& stage = d.scratch.stage;
+  evaluateDerivative(m, d.input, y, d.aux, k[0]);
+  for (int s = 1; s < 7; ++s) {
+    combine(y, h, kA[s], s, k, stage);
+    evaluateDerivative(m, d.input, stage, d.aux, k[s]);
+  }
+  y5 = stage;  // the 7th stage is evaluated at the 5th-order solution
+  combine(y, h, kB4, 7, k, y4);
+}
+
+// Error of a step, relative to the tolerance: max over components of
+// |y5 - y4| / (tol (1 + max(|y|, |y5|))), i.e. absolute and relative tolerance both tol.
+double scaledError(const std::vector<BodyState>& y, const std::vector<BodyState>& y5,
+                   const std::vector<BodyState>& y4, double tol) {
+  double e = 0.0;
+  auto part = [&](const auto& a, const auto& b, const auto& c) {
+    const auto scale = (1.0 + a.cwiseAbs().cwiseMax(b.cwiseAbs()).array()) * tol;
+    e = std::max(e, ((b - c).cwiseAbs().array() / scale).maxCoeff());
+  };
+  for (size_t i = 0; i < y.size(); ++i) {
+    part(y[i].X, y5[i].X, y4[i].X);
+    part(y[i].q.coeffs(), y5[i].q.coeffs(), y4[i].q.coeffs());
+    part(y[i].P, y5[i].P, y4[i].P);
+    part(y[i].L, y5[i].L, y4[i].L);
+  }
+  return e;
+}
+
+// Adaptive Dormand-Prince over [0, h]: steps chosen by the standard controller
+// (safety 0.9, factor within [0.2, 5]) so that each local error estimate meets
+// solver.tolerance; the last step shortened to end at h. Tolerance 0: one fixed step.
+int dopri5Adaptive(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
+  Scratch& s = d.scratch;
+  if (m.tolerance <= 0.0) {
+    dopri5Step(m, d, d.Y, h, next, s.y4);
+    d.errorEstimate = 0.0;
+    return 1;
+  }
+  s.y = d.Y;
+  double t = 0.0;
+  double trial = s.adaptiveStep > 0.0 ? std::min(s.adaptiveStep, h) : h;
+  double memory = s.adaptiveStep;  // the controller's step, not one shortened to end at h
+  int accepted = 0;
+  while (t < h) {
+    const bool last = trial >= h - t;
+    const double step = last ? h - t : trial;
+    dopri5Step(m, d, s.y, step, next, s.y4);
+    const double err = scaledError(s.y, next, s.y4, m.tolerance);
+    const double factor = err > 0.0 ? 0.9 * std::pow(err, -0.2) : 5.0;
+    if (!(err <= 1.0)) {  // also when err is NaN
+      trial = step * std::max(0.2, std::min(1.0, factor));
+      if (!(trial > 1e-14 * h) || !std::isfinite(err)) return 0;
+      continue;
+    }
+    ++accepted;
+    d.errorEstimate = err * m.tolerance;
+    for (BodyState& b : next) b.q.normalize();
+    std::swap(s.y, next);
+    t = last ? h : t + step;
+    trial = step * std::min(5.0, std::max(0.2, factor));
+    if (!last || memory <= 0.0) memory = trial;
+  }
+  s.adaptiveStep = memory;
+  next = s.y;
+  return accepted;
+}
+
 }  // namespace
 
-void integrate(const WorldModel& model, WorldData& data, double h, std::vector<BodyState>& next) {
+Quat rotationQuaternion(const Vec3& theta) {
+  const double angle = theta.norm();
+  // sin(a/2)/a by its series near 0, where the division would lose digits
+  const double half = 0.5 * angle;
+  const double s = angle < 1e-4 ? 0.5 - angle * angle / 48.0 : std::sin(half) / angle;
+  return Quat(std::cos(half), s * theta.x(), s * theta.y(), s * theta.z());
+}
+
+int integrate(const WorldModel& model, WorldData& data, double h, std::vector<BodyState>& next) {
   switch (model.method) {
-    case Method::Euler: eulerStep(model, data, h, next); return;
-    case Method::RK4: rk4Step(model, data, h, next); return;
+    case Method::Euler: eulerStep(model, data, h, next); return 1;
+    case Method::RK4: rk4Step(model, data, h, next); return 1;
+    case Method::SymplecticEuler: symplecticEulerStep(model, data, h, next); return 1;
+    case Method::Splitting: splittingStep(model, data, h, next); return 1;
+    case Method::LieRK4: lieRk4Step(model, data, h, next); return 1;
+    case Method::Dopri5: return dopri5Adaptive(model, data, h, next);
   }
+  return 0;
 }
 
 }  // namespace rigid

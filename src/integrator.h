@@ -13,7 +13,14 @@ struct WorldModel;
 struct WorldData;
 
 // Values are the FMI enumeration values of solver.method: never renumber.
-enum class Method : int { Euler = 1, RK4 = 2 };
+enum class Method : int {
+  Euler = 1,            // explicit Euler (seed)
+  RK4 = 2,              // classic Runge-Kutta (seed, default)
+  SymplecticEuler = 3,  // semi-implicit Euler: momenta first, then positions
+  Splitting = 4,        // kick-drift-kick with the Dullweber-Leimkuhler-McLachlan free rotation
+  LieRK4 = 5,           // Runge-Kutta-Munthe-Kaas 4: q moves by exponentials, unit by construction
+  Dopri5 = 6,           // adaptive embedded Dormand-Prince 5(4)
+};
 
 struct MethodInfo {
   Method method;
@@ -26,7 +33,12 @@ std::optional<Method> methodFromValue(int value);
 const char* methodName(Method method);
 
 // Y(t + h) of every body into `next` (q not yet normalised). Reads data.Y and
-// data.input; uses data.scratch and data.aux as work space.
-void integrate(const WorldModel& model, WorldData& data, double h, std::vector<BodyState>& next);
+// data.input; uses data.scratch and data.aux as work space. Returns the number of
+// steps it took: 1, or the accepted steps of the adaptive method, which also sets
+// data.errorEstimate; 0 when the adaptive method cannot meet its tolerance.
+int integrate(const WorldModel& model, WorldData& data, double h, std::vector<BodyState>& next);
+
+// Unit quaternion of the rotation by the rotation vector theta (rad).
+Quat rotationQuaternion(const Vec3& theta);
 
 }  // namespace rigid

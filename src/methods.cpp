@@ -7,6 +7,14 @@ const std::vector<MethodInfo>& methods() {
   static const std::vector<MethodInfo> kMethods = {
       {Method::Euler, "euler", "explicit Euler, first order (the seed's Euler method)"},
       {Method::RK4, "rk4", "classic Runge-Kutta, fourth order (the seed's default)"},
+      {Method::SymplecticEuler, "symplecticEuler",
+       "semi-implicit (symplectic) Euler, first order: momenta, then positions and a rotation by the new angular velocity"},
+      {Method::Splitting, "splitting",
+       "kick-drift-kick with the Dullweber-Leimkuhler-McLachlan free-rotation splitting, second order: |L| exact, energy bounded"},
+      {Method::LieRK4, "lieRk4",
+       "Runge-Kutta-Munthe-Kaas 4 on the rotation group, fourth order: q unit by construction"},
+      {Method::Dopri5, "dopri5",
+       "adaptive embedded Dormand-Prince 5(4) with step-size control to solver.tolerance"},
   };
   return kMethods;
 }

@@ -40,6 +40,7 @@ Scene loadSceneFile(const std::string& path);
 // Defaults of the scene format, documented in the README.
 namespace defaults {
 constexpr double kSolverStep = 1e-3;       // s
+constexpr double kTolerance = 1e-6;        // 1, adaptive methods' local error tolerance
 constexpr double kRestitution = 0.5;
 constexpr double kStaticFriction = 0.6;
 constexpr double kKineticFriction = 0.4;

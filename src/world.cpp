@@ -48,6 +48,9 @@ WorldData initialData(const WorldModel& model) {
 #endif
   d.scratch.stage.resize(n);
   d.scratch.next.resize(n);
+  d.scratch.y.resize(n);
+  d.scratch.y4.resize(n);
+  d.scratch.u.resize(n);
   for (auto& k : d.scratch.k) k.resize(n);
   refreshAuxiliaries(model, d);
   return d;
@@ -95,9 +98,11 @@ int firstNonFinite(const std::vector<BodyState>& Y) {
 }
 
 // Y(t + tau) into next: auxiliaries -> forces -> derivative per stage, then unit q.
-void advance(const WorldModel& model, WorldData& data, double tau, std::vector<BodyState>& next) {
-  integrate(model, data, tau, next);
+// Returns the integrator's steps (0: the adaptive method failed its tolerance).
+int advance(const WorldModel& model, WorldData& data, double tau, std::vector<BodyState>& next) {
+  const int steps = integrate(model, data, tau, next);
   normaliseOrientations(next);
+  return steps;
 }
 
 [[maybe_unused]] bool anyImpact(const WorldModel& model, WorldData& data, double h, const std::vector<BodyState>& Y) {
@@ -186,7 +191,9 @@ StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
   std::vector<BodyState>& next = data.scratch.next;
 #if !(RIGID_WITH_SURFACES || RIGID_WITH_COLLISIONS)
   // Nothing to touch: the integrator alone.
-  advance(model, data, h, next);
+  const int steps = advance(model, data, h, next);
+  if (steps == 0) return {false, -1};
+  data.steps += steps;
   return commit(model, data, next);
 #else
   // Impacts split the step: integrate to the instant of impact, answer it, go on.
@@ -194,13 +201,15 @@ StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
   double done = 0.0;
   for (int impacts = 0;; ++impacts) {
     const double rest = h - done;
-    advance(model, data, rest, next);
+    const int steps = advance(model, data, rest, next);
+    if (steps == 0) return {false, -1};
     double taken = rest;
     if (impacts < kMaxImpactsPerStep && anyImpact(model, data, h, next) &&
         !anyImpact(model, data, h, data.Y))
       taken = locateImpact(model, data, h, rest, next);
     respondToContacts(model, data, h, next);
     if (const StepResult r = commit(model, data, next); !r.ok) return r;
+    data.steps += steps;
     done += taken;
     if (taken == rest || impacts >= kMaxImpactsPerStep) return {};
   }

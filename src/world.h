@@ -22,6 +22,7 @@ struct WorldModel {
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);  // m/s^2
   Method method = Method::RK4;
   double maxStep = 1e-3;                 // s, largest internal step
+  double tolerance = 1e-6;               // 1, local error tolerance of adaptive methods (0: fixed steps)
   std::vector<BodyConstants> bodies;
   std::vector<Surface> surfaces;
   std::vector<Medium> media;
@@ -31,7 +32,10 @@ struct WorldModel {
 struct Scratch {
   std::vector<BodyState> stage;   // Y + c h k, a Runge-Kutta stage
   std::vector<BodyState> next;    // Y(t + h) before it is accepted
-  std::vector<BodyDerivative> k[4];
+  std::vector<BodyDerivative> k[7];
+  std::vector<BodyState> y, y4;   // the adaptive method's current state and its 4th-order solution
+  std::vector<Vec3> u;            // Lie-group stages: rotation vector of each body
+  double adaptiveStep = 0.0;      // s, the adaptive method's next trial step (0: none yet)
 };
 
 // Everything that changes during a run.
@@ -40,6 +44,8 @@ struct WorldData {
   std::vector<BodyInput> input;  // external loads (FMU inputs)
   std::vector<BodyAux> aux;    // auxiliaries of Y, valid after initialise() and step()
   std::vector<int> contacts;   // contact points of each body at the end of the last step
+  long steps = 0;              // internal steps taken since the counter was last cleared
+  double errorEstimate = 0.0;  // the adaptive method's last local error estimate (1)
   // Body-body collision detection, when at least two bodies can collide; shared by
   // copies of the data (it holds no state between steps but FCL's objects).
   std::shared_ptr<CollisionCache> collision;
@@ -54,7 +60,8 @@ void refreshAuxiliaries(const WorldModel& model, WorldData& data);
 
 struct StepResult {
   bool ok = true;
-  int body = -1;  // when !ok: first body whose new state is not finite
+  int body = -1;  // when !ok: first body whose new state is not finite, or -1 when the
+                  // adaptive method could not meet its tolerance
 };
 
 // Advances the world by one internal step h (s). On a non-finite result the step is

@@ -36,10 +36,11 @@ def test_every_variable_has_unit_or_enumeration_type_and_description(fmu_of):
         if v.type == "Real":
             assert v.unit in units, v.name
         elif v.type == "Integer":  # FMI 2.0 Integers carry no unit: counts
-            assert v.name.endswith(".contacts") and v.causality == "output", v.name
+            assert v.name.endswith((".contacts", "solver.steps")) and v.causality == "output", v.name
         else:
             assert v.type == "Enumeration" and v.declaredType.name == "SolverMethod", v.name
-    assert [i.name for i in md.typeDefinitions[0].items] == ["euler", "rk4"]
+    assert [(i.name, int(i.value)) for i in md.typeDefinitions[0].items] == [
+        ("euler", 1), ("rk4", 2), ("symplecticEuler", 3), ("splitting", 4), ("lieRk4", 5), ("dopri5", 6)]
 
 
 def test_contract_variable_names(fmu_of):

@@ -82,11 +82,13 @@ TEST_F(Description, VariableNamesAreThoseOfTheInterface) {
   EXPECT_EQ(byOwner["c"], expectedBodyNames("c"));
   // World variables: those of INTERFACE.md plus FMI's independent variable, time.
   const std::set<std::string> world = {"time", "gravity[1]", "gravity[2]", "gravity[3]",
-                                       "solver.method", "solver.step"};
+                                       "solver.method", "solver.step",
+                                       // extensions (issue 6): adaptive tolerance, step counts
+                                       "solver.tolerance", "solver.steps", "solver.errorEstimate"};
   EXPECT_EQ(byOwner["world"], world);
   EXPECT_EQ(byOwner.size(), 3u);
   // 27 per body + 6 world variables.
-  EXPECT_EQ(vars.size(), 2u * 28u + 6u);  // 28 per body, 6 for the world
+  EXPECT_EQ(vars.size(), 2u * 28u + 9u);  // 28 per body, 9 for the world
 }
 
 TEST_F(Description, CausalityAndUnitsFollowTheInterfaceTable) {
@@ -228,7 +230,7 @@ TEST_F(Description, WriteValueRefusesNonPositiveSolverStep) {
 TEST_F(Description, WriteValueRefusesUnknownSolverMethod) {
   const Variable& v = find(vars, "solver.method");
   ASSERT_EQ(model.method, rigid::Method::Euler);
-  for (double bad : {0.0, 3.0, -1.0, 1.5, 1e10}) {
+  for (double bad : {0.0, 7.0, -1.0, 1.5, 1e10}) {
     const std::string why = rigidfmu::writeValue(v, bad, model, data, Phase::Setup);
     EXPECT_TRUE(contains(why, "solver.method")) << bad << ": " << why;
     EXPECT_TRUE(contains(why, "1 (euler)")) << why;

@@ -131,7 +131,7 @@ TEST(Scene, UnknownBodyField) {
 
 TEST(Scene, UnknownSolverField) {
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"method": "rk4", "dt": 0.1}, )"),
-                     "solver.dt: unknown field (known: method, step)");
+                     "solver.dt: unknown field (known: method, step, tolerance)");
 }
 
 TEST(Scene, NameNotIdentifier) {
@@ -152,7 +152,7 @@ TEST(Scene, GravityNotThreeNumbers) {
 
 TEST(Scene, SolverMethodUnknown) {
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"method": "rk5"}, )"),
-                     "solver.method: must be one of euler, rk4, got \"rk5\"");
+                     "solver.method: must be one of euler, rk4, symplecticEuler, splitting, lieRk4, dopri5, got \"rk5\"");
 }
 
 TEST(Scene, SolverStepNotPositive) {

@@ -1,0 +1,949 @@
+"""Accuracy report of the FMU's integration methods: work-precision diagrams and
+measured orders of convergence on reference problems with independent references.
+
+Every method of the Enumeration `SolverMethod` (read from the modelDescription, so that
+new methods are picked up without changing this script) is run through the FMU (fmpy's
+FMU2Slave, no simulate_fmu) over a range of steps `solver.step` — or, for an adaptive
+method when the FMU has a `solver.tolerance` parameter, over a range of tolerances —
+and its error at the end time T is measured against a reference computed here, not by
+the code under test (closed forms, or scipy's DOP853 at rtol 1e-12 on the problem's own
+equations written below). Wall time per simulated second: median of the timed runs of
+the stepping alone (one instance per configuration, fmi2Reset between runs,
+communication steps of 0.5 s).
+
+usage:
+  report_accuracy.py [--out DIR] [--runs N]          the full report: DIR/accuracy.md and
+                                                     DIR/accuracy/*.png (default DIR docs/)
+  report_accuracy.py --quick [--out DIR]             a few steps per method, 1 run each,
+                                                     the smooth problems only; exit status 1
+                                                     when a measured order is off
+  report_accuracy.py --scene SCENE.json --tolerance TOL [--stop-time T]
+                                                     recommends the cheapest method and step
+                                                     whose error on that scene is below TOL
+
+The core is built in --build (default $RIGIDFMU_BUILD or build/) like build_fmu.sh does,
+unless --no-build; a directory holding rigidfmu-describe and the rigidfmu_fmi2_*.so
+binaries but no CMakeCache.txt is used as prebuilt (packaging only)."""
+import argparse
+import hashlib
+import json
+import math
+import os
+import pathlib
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+CMAKE = "/usr/bin/cmake"
+G = 9.81
+
+# Expected orders of the methods this script knows (error vs step; the adaptive method's
+# error vs tolerance is expected near 1) and the tolerance on the measured slope.
+EXPECTED_ORDER = {"euler": 1.0, "symplecticEuler": 1.0, "splitting": 2.0, "rk4": 4.0,
+                  "lieRk4": 4.0, "dopri5": 5.0}
+ORDER_TOLERANCE = {"euler": 0.25, "symplecticEuler": 0.3, "splitting": 0.4, "rk4": 0.5,
+                   "lieRk4": 0.5, "dopri5": 0.8}
+ADAPTIVE_ORDER, ADAPTIVE_TOLERANCE = 1.0, 0.4
+ADAPTIVE_NAMES = {"dopri5", "dopri45", "rk45", "rkf45", "cashkarp", "bs23"}
+
+COMM = 0.5  # s, communication step of the runs (every step below divides it)
+
+
+# ----------------------------------------------------------------------------------
+# quaternions and independent references
+
+def quat_mul(a, b):
+    aw, ax, ay, az = a
+    bw, bx, by, bz = b
+    return np.array([aw * bw - ax * bx - ay * by - az * bz,
+                     aw * bx + ax * bw + ay * bz - az * by,
+                     aw * by - ax * bz + ay * bw + az * bx,
+                     aw * bz + ax * by - ay * bx + az * bw])
+
+
+def quat_axis_angle(axis, angle):
+    axis = np.asarray(axis, dtype=float)
+    axis = axis / np.linalg.norm(axis)
+    return np.r_[math.cos(angle / 2), math.sin(angle / 2) * axis]
+
+
+def rotation_angle(q1, q2):
+    """Angle (rad) of the rotation between two unit quaternions: 2 asin |vec(q2* q1)|
+    (accurate near 0, where 2 acos |q1.q2| is not)."""
+    q1 = np.asarray(q1, dtype=float) / np.linalg.norm(q1)
+    q2 = np.asarray(q2, dtype=float) / np.linalg.norm(q2)
+    rel = quat_mul(q2 * np.array([1, -1, -1, -1]), q1)
+    return 2 * math.asin(min(1.0, float(np.linalg.norm(rel[1:]))))
+
+
+def torque_free_reference(inertia, omega0, T):
+    """Euler's equations in the body frame and q' = 1/2 q (0, omega_body), identity
+    orientation at t = 0 (so omega0 is also the body-frame value), DOP853 at rtol 1e-12."""
+    I = np.asarray(inertia, dtype=float)
+
+    def rhs(t, y):
+        w, q = y[:3], y[3:]
+        return np.r_[np.cross(I * w, w) / I, 0.5 * quat_mul(q, np.r_[0.0, w])]
+
+    sol = solve_ivp(rhs, (0.0, T), np.r_[omega0, 1.0, 0, 0, 0], method="DOP853",
+                    rtol=1e-12, atol=1e-14)
+    q = sol.y[3:, -1]
+    return q / np.linalg.norm(q)
+
+
+def symmetric_top_closed_form(I1, I3, omega0, T):
+    """Torque-free symmetric top (I1 = I2), identity orientation at 0: regular precession,
+    q(t) = rot(L/|L|, |L| t / I1) * rot(e3, -Omega t), Omega = (I3 - I1)/I1 * omega3
+    (the body-frame omega turns about the axis at Omega; the axis cones about L)."""
+    w = np.asarray(omega0, dtype=float)
+    L = np.array([I1 * w[0], I1 * w[1], I3 * w[2]])
+    Omega = (I3 - I1) / I1 * w[2]
+    return quat_mul(quat_axis_angle(L, np.linalg.norm(L) * T / I1),
+                    quat_axis_angle([0, 0, 1], -Omega * T))
+
+
+def bounce_height(t, h0, e):
+    """Height of the lowest point of a ball dropped from h0 onto a floor with
+    restitution e (impacts instantaneous): the piecewise parabola."""
+    t_hit = math.sqrt(2 * h0 / G)
+    if t <= t_hit:
+        return h0 - 0.5 * G * t * t
+    v = e * G * t_hit  # upward speed after the first impact
+    start = t_hit
+    while True:
+        flight = 2 * v / G
+        if t <= start + flight:
+            s = t - start
+            return v * s - 0.5 * G * s * s
+        start += flight
+        v *= e
+
+
+# Fluids (README / docs/media.md): water 998.2 kg/m3, 1.002e-3 Pa s; box C_d 1.05,
+# sphere C_d 0.47; Stokes b = 6 pi mu r for a sphere, Leith's 6 pi (r_n/3 + 2 r_s/3) mu
+# for other shapes.
+RHO_WATER, MU_WATER = 998.2, 1.002e-3
+
+
+def heave_reference(m, size, z0, T):
+    """1-DOF heave of an upright box in water whose surface is z = 0 (docs/media.md):
+    m z'' = -m g + rho g V_sub - f (mu beta + 1/2 rho C_d A |v|) v with
+    V_sub = A d, d = clamp(lz/2 - z, 0, lz), f = V_sub / V_b, A = lx ly, C_d 1.05,
+    beta = 6 pi (r_n/3 + 2 r_s/3), r_n = sqrt(A/pi), r_s = sqrt(S/(4 pi)).
+    DOP853 at rtol 1e-12 (the drag is C1 at v = 0; the step control copes)."""
+    lx, ly, lz = size
+    A, Vb = lx * ly, lx * ly * lz
+    S = 2 * (lx * ly + ly * lz + lx * lz)
+    beta = 6 * math.pi * (math.sqrt(A / math.pi) / 3 + 2 * math.sqrt(S / (4 * math.pi)) / 3)
+
+    def rhs(t, y):
+        z, v = y
+        d = min(max(lz / 2 - z, 0.0), lz)
+        f = A * d / Vb
+        drag = -f * (MU_WATER * beta + 0.5 * RHO_WATER * 1.05 * A * abs(v)) * v
+        return [v, -G + (RHO_WATER * G * A * d + drag) / m]
+
+    sol = solve_ivp(rhs, (0.0, T), [z0, 0.0], method="DOP853", rtol=1e-12, atol=1e-14)
+    return sol.y[0, -1]
+
+
+# ----------------------------------------------------------------------------------
+# reference problems: a scene, an end time, a reference and an error measure
+
+def body(name, shape, mass, **fields):
+    b = {"name": name, "shape": shape, "mass": mass}
+    b.update(fields)
+    return b
+
+
+def scene(name, bodies, gravity=(0.0, 0.0, -G), **extra):
+    s = {"name": name, "gravity": list(gravity), "solver": {"method": "rk4", "step": 1e-3},
+         "bodies": bodies}
+    s.update(extra)
+    return s
+
+
+def vec(out, prefix, n=3):
+    return np.array([out[f"{prefix}[{i}]"] for i in range(1, n + 1)])
+
+
+class Problem:
+    """key, title, scene, T, error(outputs) -> float, unit, what it tests, reference,
+    scale (saturation and rounding floor of the order fit are relative to it), steps
+    per expected order, smooth (run in --quick and judged)."""
+
+    def __init__(self, key, title, scene, T, error, unit, tests, reference, scale,
+                 smooth=True, step_scale=1.0, not_asymptotic=(), exact=()):
+        self.key, self.title, self.scene, self.T = key, title, scene, T
+        self.error, self.unit, self.tests, self.reference = error, unit, tests, reference
+        self.scale, self.smooth, self.step_scale = scale, smooth, step_scale
+        self.not_asymptotic = set(not_asymptotic)  # methods expected off their asymptotic range
+        self.exact = set(exact)                    # methods exact on it up to rounding
+
+
+def spin_problem(name, inertia, omega0):
+    """A torque-free body with principal inertia diag(inertia), identity orientation (so
+    world and body frames coincide at t = 0), no gravity."""
+    I = [[inertia[0], 0, 0], [0, inertia[1], 0], [0, 0, inertia[2]]]
+    return scene(name, [body("spinner", {"type": "box", "size": [0.3, 0.2, 0.1]}, 1.0,
+                             inertia=I, angularVelocity=list(omega0),
+                             outputs=["orientation"], inputs=[])], gravity=(0, 0, 0))
+
+
+def problems():
+    P = []
+
+    # (a) torque-free near the intermediate axis
+    inertia, w0, T = (1.0, 2.0, 3.0), (0.01, 5.0, 0.01), 20.0
+    q_ref_a = torque_free_reference(inertia, w0, T)
+    P.append(Problem(
+        "intermediate_axis", "torque-free body near the intermediate axis",
+        spin_problem("IntermediateAxis", inertia, w0), T,
+        lambda o, q=q_ref_a: rotation_angle(vec(o, "spinner.orientation", 4), q), "rad",
+        "Free rotation, principal inertia (1, 2, 3) kg m2, omega0 = (0.01, 5, 0.01) rad/s, "
+        "no gravity, T = 20 s: the body flips every ~5 s (Dzhanibekov effect). Close to "
+        "the separatrix the orientation is very sensitive to the integrator's error "
+        "(tests the rotational update q' = 1/2 omega q with omega = I(t)^-1 L).",
+        "scipy DOP853 (rtol 1e-12, atol 1e-14) on Euler's equations in the body frame "
+        "with q' = 1/2 q (0, omega_body); error = rotation angle between q(T) and q_ref(T).",
+        1.0, not_asymptotic={"euler"}))
+
+    # (b) torque-free near the major axis
+    w0b = (0.4, 0.3, 3.0)
+    q_ref_b = torque_free_reference(inertia, w0b, T)
+    P.append(Problem(
+        "major_axis", "torque-free body near the major axis",
+        spin_problem("MajorAxis", inertia, w0b), T,
+        lambda o, q=q_ref_b: rotation_angle(vec(o, "spinner.orientation", 4), q), "rad",
+        "Free rotation, inertia (1, 2, 3) kg m2, omega0 = (0.4, 0.3, 3.0) rad/s, T = 20 s: "
+        "a stable wobble about the major axis, the smooth case of free rotation.",
+        "scipy DOP853 (rtol 1e-12) on Euler's equations, as in (a); error = rotation angle.",
+        1.0))
+
+    # (c) symmetric top, regular precession
+    I1, I3, w0c = 1.0, 2.0, (0.5, 0.2, 4.0)
+    q_ref_c = symmetric_top_closed_form(I1, I3, w0c, T)
+    P.append(Problem(
+        "symmetric_top", "symmetric top (regular precession, closed form)",
+        spin_problem("SymmetricTop", (I1, I1, I3), w0c), T,
+        lambda o, q=q_ref_c: rotation_angle(vec(o, "spinner.orientation", 4), q), "rad",
+        "Torque-free symmetric top I1 = I2 = 1, I3 = 2 kg m2 spinning at 4 rad/s about its "
+        "axis with omega0 = (0.5, 0.2, 4) rad/s off the axis, T = 20 s: regular "
+        "precession, the axis cones about L while the body-frame omega turns about the "
+        "axis at Omega = (I3 - I1)/I1 omega3. Not a heavy top: the FMU has no fixed pivot "
+        "and gravity acts at the centre of mass, so a gravity torque about a pivot could "
+        "only come through the torque input, which holds its value over a communication "
+        "step — the error would then be the master's zero-order hold, not the method's.",
+        "closed form q(t) = rot(L/|L|, |L| t / I1) rot(e3, -Omega t); error = rotation "
+        "angle at T.", 1.0))
+
+    # (d) linear drag
+    r, m, b = 0.1, 1.0, 2.0
+    mu = b / (6 * math.pi * r)
+    v0, Td = np.array([1.0, -0.5, 3.0]), 3.0
+    tau, vT = m / b, np.array([0.0, 0.0, -m * G / b])
+    x_ref_d = vT * Td + (v0 - vT) * tau * (1 - math.exp(-Td / tau))
+    P.append(Problem(
+        "linear_drag", "projectile with linear drag",
+        scene("LinearDrag", [body("ball", {"type": "sphere", "radius": r}, m, velocity=list(v0),
+                                  outputs=["position"], inputs=[])],
+              media=[{"name": "fluid", "type": "custom", "density": 0.0, "viscosity": mu,
+                      "min": [-100, -100, -100], "max": [100, 100, 100]}]), Td,
+        lambda o, x=x_ref_d: float(np.linalg.norm(vec(o, "ball.position") - x)), "m",
+        "Sphere r = 0.1 m, m = 1 kg, wholly inside a custom medium of density 0 and "
+        "viscosity mu = b/(6 pi r) (Stokes drag b = 2 N s/m, no buoyancy), v0 = (1, -0.5, 3) "
+        "m/s, gravity, T = 3 s (6 relaxation times): the medium's force stage, smooth.",
+        "closed form x = v_T t + (v0 - v_T) tau (1 - e^(-t/tau)), tau = m/b, v_T = m g/b; "
+        "error = |x(T) - x_ref(T)|.", 10.0))
+
+    # (e) quadratic drag, vertical fall from rest
+    r, m, rho = 0.1, 10.0, 100.0
+    g1 = G * (1 - rho * 4 / 3 * math.pi * r**3 / m)
+    vTe = math.sqrt(2 * m * g1 / (rho * 0.47 * math.pi * r**2))
+    Te, z0 = 3.0, 50.0
+    z_ref_e = z0 - vTe**2 / g1 * math.log(math.cosh(g1 * Te / vTe))
+    P.append(Problem(
+        "quadratic_drag", "fall with quadratic drag and buoyancy",
+        scene("QuadraticDrag", [body("ball", {"type": "sphere", "radius": r}, m,
+                                     position=[0, 0, z0], outputs=["position"], inputs=[])],
+              media=[{"name": "fluid", "type": "custom", "density": rho, "viscosity": 0.0,
+                      "min": [-100, -100, -100], "max": [100, 100, 100]}]), Te,
+        lambda o, z=z_ref_e: float(np.linalg.norm(vec(o, "ball.position") - [0, 0, z])), "m",
+        "Sphere r = 0.1 m, m = 10 kg falling from rest in a custom medium of density "
+        "100 kg/m3 and viscosity 0: buoyancy and Newton drag 1/2 rho C_d A v^2 "
+        "(C_d 0.47, A = pi r^2), T = 3 s (close to the terminal speed 11.3 m/s).",
+        "closed form z = z0 - v_T^2/g' ln cosh(g' t / v_T), g' = g (1 - rho V / m), "
+        "v_T = sqrt(2 m g' / (rho C_d A)); error = |x(T) - x_ref(T)|.", 10.0))
+
+    # (f) block sliding down an incline
+    theta, mus, muk, cube = math.radians(30.0), 0.5, 0.3, 0.2
+    q = [math.cos(theta / 2), 0.0, math.sin(theta / 2), 0.0]
+    n = np.array([math.sin(theta), 0.0, math.cos(theta)])
+    down = np.array([math.cos(theta), 0.0, -math.sin(theta)])
+    x0 = (0.5 + cube / 2) * n
+    Tf = 2.0
+    a = G * (math.sin(theta) - muk * math.cos(theta))
+    x_ref_f = x0 + 0.5 * a * Tf**2 * down
+    P.append(Problem(
+        "incline", "block sliding down a 30 degree incline",
+        scene("Incline", [body("cube", {"type": "box", "size": [cube] * 3}, 2.0,
+                               position=list(x0), orientation=q, staticFriction=mus,
+                               kineticFriction=muk, restitution=0.0,
+                               outputs=["position"], inputs=[])],
+              surfaces=[{"name": "ramp", "min": [-5, -1, -0.5], "max": [5, 1, 0.5],
+                         "orientation": q, "staticFriction": mus, "kineticFriction": muk,
+                         "restitution": 0.0}]), Tf,
+        lambda o, x=x_ref_f: float(np.linalg.norm(vec(o, "cube.position") - x)), "m",
+        "A 0.2 m cube (2 kg) released on a 30 degree ramp, mu_s 0.5, mu_k 0.3, T = 2 s: "
+        "support and kinetic friction of the surface module in the force stage "
+        "(constant acceleration, so methods exact for quadratics show only rounding).",
+        "closed form: x0 + 1/2 a t^2 along the slope, a = g (sin theta - mu_k cos theta); "
+        "error = |x(T) - x_ref(T)|.", 5.0, smooth=False))
+
+    # (g) bouncing ball
+    R, e, h0, Tg = 0.1, 0.8, 1.0, 1.5
+    z_ref_g = R + bounce_height(Tg, h0, e)
+    P.append(Problem(
+        "bounce", "ball bouncing on a floor",
+        scene("Bounce", [body("ball", {"type": "sphere", "radius": R}, 1.0,
+                              position=[0, 0, R + h0], restitution=e,
+                              outputs=["position"], inputs=[])],
+              surfaces=[{"name": "floor", "min": [-50, -5, -1], "max": [50, 5, 0],
+                         "staticFriction": 0.5, "kineticFriction": 0.3, "restitution": e}]),
+        Tg,
+        lambda o, z=z_ref_g: float(np.linalg.norm(vec(o, "ball.position") - [0, 0, z])), "m",
+        "Ball r = 0.1 m dropped from 1 m on a floor, restitution 0.8 (ball and floor), "
+        "T = 1.5 s, in the flight after the second impact: impacts located inside the "
+        "step, the impulse, and the rest of the step integrated after it.",
+        "closed form: the piecewise parabola with impacts at t1 = sqrt(2 h0/g), "
+        "t_(n+1) = t_n + 2 e^n t1; error = |x(T) - x_ref(T)|.", 1.0, smooth=False))
+
+    # (h) floating box, heave
+    size, mb, zh0, Th = (1.0, 1.0, 0.5), 250.0, 0.1, 2.0
+    z_ref_h = heave_reference(mb, size, zh0, Th)
+    P.append(Problem(
+        "heave", "floating box: heave in water",
+        scene("Heave", [body("box", {"type": "box", "size": list(size)}, mb,
+                             position=[0, 0, zh0], outputs=["position"], inputs=[])],
+              media=[{"name": "pool", "type": "water", "min": [-10, -10, -10],
+                      "max": [10, 10, 0]}]), Th,
+        lambda o, z=z_ref_h: float(np.linalg.norm(vec(o, "box.position") - [0, 0, z])), "m",
+        "A 1 x 1 x 0.5 m box of density 500 released upright at draft 0.15 m in water "
+        "(equilibrium draft m/(rho_w A) = 0.2505 m), T = 2 s (two heave periods): "
+        "buoyancy of the clipped volume and drag scaled by the submerged fraction. "
+        "The quadratic drag |v| v is only C1 where the heave turns (v = 0).",
+        "scipy DOP853 (rtol 1e-12) on the 1-DOF heave equation with the buoyancy and "
+        "drag of docs/media.md (Leith's linear and C_d 1.05 quadratic drag, scaled by the "
+        "submerged fraction); error = |x(T) - x_ref(T)|.", 0.1, smooth=False))
+    return P
+
+
+# ----------------------------------------------------------------------------------
+# building FMUs
+
+def ensure_core(build, no_build):
+    """Configures and builds the core like build_fmu.sh; a directory with the binaries
+    but no CMakeCache.txt is taken as prebuilt."""
+    prebuilt = (build / "rigidfmu-describe").exists() and not (build / "CMakeCache.txt").exists()
+    if no_build or prebuilt:
+        if not (build / "rigidfmu-describe").exists():
+            sys.exit(f"report_accuracy: no rigidfmu-describe in {build} (build it, or drop --no-build)")
+        return
+    if not (build / "CMakeCache.txt").exists():
+        subprocess.run([CMAKE, "-S", str(ROOT), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release"],
+                       check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([CMAKE, "--build", str(build), f"-j{os.cpu_count() or 1}", "--target",
+                    "rigidfmu-describe", "rigidfmu_fmus"], check=True, stdout=subprocess.DEVNULL)
+
+
+class Builder:
+    def __init__(self, build, folder):
+        self.build, self.folder = pathlib.Path(build), pathlib.Path(folder)
+
+    def fmu(self, scene_dict):
+        text = json.dumps(scene_dict, indent=1, sort_keys=True)
+        key = hashlib.sha256(text.encode()).hexdigest()[:12]
+        name = scene_dict.get("name", "scene")
+        out = self.folder / f"{name}-{key}.fmu"
+        if not out.exists():
+            path = self.folder / f"{name}-{key}.json"
+            path.write_text(text)
+            subprocess.run([CMAKE, f"-DSCENE={path}", f"-DOUT={out}",
+                            f"-DDESCRIBE={self.build / 'rigidfmu-describe'}",
+                            f"-DLIBRARY_DIR={self.build}", "-P",
+                            str(ROOT / "cmake" / "package_fmu.cmake")],
+                           check=True, stdout=subprocess.DEVNULL)
+        return out
+
+
+# ----------------------------------------------------------------------------------
+# running an FMU
+
+class Model:
+    """One FMU: its methods (from the modelDescription), its variables, one extracted copy."""
+
+    def __init__(self, fmu, folder):
+        from fmpy import extract, read_model_description
+        self.fmu = str(fmu)
+        self.md = read_model_description(self.fmu)
+        self.dir = extract(self.fmu, unzipdir=tempfile.mkdtemp(prefix="acc-", dir=folder))
+        self.vars = {v.name: v for v in self.md.modelVariables}
+        self.methods = []  # (name, value, description)
+        for t in self.md.typeDefinitions:
+            if t.name == "SolverMethod":
+                self.methods = [(i.name, int(i.value), i.description or "") for i in t.items]
+        if not self.methods:
+            raise SystemExit("report_accuracy: no Enumeration SolverMethod in the modelDescription")
+        self.has_tolerance = "solver.tolerance" in self.vars
+        self.steps_var = self.vars.get("solver.steps")
+        self.outputs = [v for v in self.md.modelVariables
+                        if v.causality == "output" and v.type == "Real"]
+
+    def is_adaptive(self, name, description):
+        return self.has_tolerance and (name in ADAPTIVE_NAMES or "adaptive" in description.lower())
+
+    def run(self, method_value, T, step=None, tolerance=None, runs=1, comm=COMM):
+        """(outputs at T, median wall seconds per simulated second or None, internal steps
+        or None, failure message or None). One instance; an untimed run reads the outputs
+        (and solver.steps after every communication step), then `runs` timed runs."""
+        from fmpy.fmi2 import FMU2Slave
+        slave = FMU2Slave(guid=self.md.guid, unzipDirectory=self.dir,
+                          modelIdentifier=self.md.coSimulation.modelIdentifier,
+                          instanceName="accuracy")
+        slave.instantiate(loggingOn=False)
+        n_comm = max(1, round(T / comm))
+        H = T / n_comm
+        reals, ints = {}, {self.vars["solver.method"].valueReference: method_value}
+        if step is not None:
+            reals[self.vars["solver.step"].valueReference] = step
+        if tolerance is not None and self.has_tolerance:
+            reals[self.vars["solver.tolerance"].valueReference] = tolerance
+
+        def start():
+            slave.setupExperiment(startTime=0.0)
+            if reals:
+                slave.setReal(list(reals), list(reals.values()))
+            slave.setInteger(list(ints), list(ints.values()))
+            slave.enterInitializationMode()
+            slave.exitInitializationMode()
+
+        outputs, internal, times, failure = None, None, [], None
+        try:
+            start()
+            count = self.steps_var is not None
+            total = 0
+            for k in range(n_comm):
+                slave.doStep(k * H, H)
+                if count:
+                    vr = [self.steps_var.valueReference]
+                    total += (slave.getInteger(vr)[0] if self.steps_var.type == "Integer"
+                              else slave.getReal(vr)[0])
+            internal = int(total) if count else None
+            vrs = [v.valueReference for v in self.outputs]
+            outputs = dict(zip([v.name for v in self.outputs], slave.getReal(vrs)))
+            for _ in range(runs):
+                slave.terminate()
+                slave.reset()
+                start()
+                t0 = time.perf_counter()
+                for k in range(n_comm):
+                    slave.doStep(k * H, H)
+                times.append((time.perf_counter() - t0) / T)
+        except Exception as exc:  # fmi2Discard (not finite, tolerance not met) or error
+            failure = f"{type(exc).__name__}: {exc}"
+        finally:
+            try:
+                slave.freeInstance()
+            except Exception:
+                pass
+        return outputs, (statistics.median(times) if times else None), internal, failure
+
+
+# ----------------------------------------------------------------------------------
+# sweeps and orders
+
+def step_list(order, quick, scale=1.0):
+    """Steps h = COMM / N for a method of the given expected order: from a coarse step
+    where the error is a few per cent to one where it nears rounding."""
+    if order is None:
+        order = 2.0
+    if order <= 1.5:
+        Ns = [50, 100, 200, 400, 800, 1600, 3200] if not quick else [100, 200, 400, 800]
+    elif order <= 3:
+        Ns = [10, 20, 40, 80, 160, 320, 640] if not quick else [20, 40, 80, 160]
+    else:
+        Ns = [4, 8, 16, 32, 64, 128, 256] if not quick else [16, 32, 64]
+    return [COMM / max(1, round(N * scale)) for N in Ns]
+
+
+def tolerance_list(quick):
+    return [1e-4, 1e-6, 1e-8] if quick else [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11]
+
+
+def fit_order(xs, errs, scale):
+    """Least-squares slope of log error vs log x over the points in the asymptotic range:
+    below the saturation (3 % of the problem's scale) and above the rounding floor
+    (points from where the error stops falling, once below 1e-8 of the scale).
+    Returns (slope or None, indices used, status)."""
+    pts = sorted((x, e, i) for i, (x, e) in enumerate(zip(xs, errs)) if e is not None
+                 and np.isfinite(e))[::-1]  # coarse to fine
+    if not pts:
+        return None, [], "failed"
+    floor = 1e-11 * scale
+    if all(e <= floor for _, e, _ in pts):
+        return None, [], "exact"
+    used, prev = [], None
+    for x, e, i in pts:
+        if e <= floor:
+            break
+        if prev is not None and e < 1e-8 * scale:
+            ratio = prev[0] / x  # > 1
+            if e > prev[1] / ratio**0.5:  # no longer falling: rounding
+                break
+        if e < 0.03 * scale:
+            used.append(i)
+        prev = (x, e)
+    if len(used) < 2:
+        return None, used, "not in its asymptotic range"
+    slope = float(np.polyfit(np.log([xs[i] for i in used]), np.log([errs[i] for i in used]), 1)[0])
+    return slope, used, "ok"
+
+
+def expectation(method, adaptive, fixed_variant):
+    if adaptive and not fixed_variant:
+        return ADAPTIVE_ORDER, ADAPTIVE_TOLERANCE
+    return EXPECTED_ORDER.get(method), ORDER_TOLERANCE.get(method)
+
+
+def sweep(model, problem, quick, runs, log):
+    """Every method (and the adaptive one in fixed-step use too) over its steps or
+    tolerances. Returns a list of curve dicts."""
+    curves = []
+    for name, value, desc in model.methods:
+        adaptive = model.is_adaptive(name, desc)
+        variants = [(False, name)]
+        if adaptive:
+            variants = [(False, name), (True, f"{name} (fixed step, tolerance 0)")]
+        for fixed, label in variants:
+            expected, tol = expectation(name, adaptive, fixed)
+            if adaptive and not fixed:
+                xs, kind = tolerance_list(quick), "tolerance"
+            else:
+                xs, kind = step_list(expected, quick, problem.step_scale), "step"
+            rows = []
+            for x in xs:
+                if kind == "tolerance":
+                    out, wall, internal, fail = model.run(value, problem.T, step=COMM,
+                                                          tolerance=x, runs=runs)
+                else:
+                    out, wall, internal, fail = model.run(
+                        value, problem.T, step=x, tolerance=0.0 if adaptive else None, runs=runs)
+                err = problem.error(out) if out is not None else None
+                if internal is None and kind == "step":
+                    internal = round(problem.T / x)
+                rows.append({"x": x, "error": err, "wall": wall, "internal": internal,
+                             "failure": fail})
+                log(f"  {problem.key:18s} {label:32s} {kind} {x:9.3g}  error "
+                    f"{'failed' if err is None else f'{err:.3e}'}"
+                    f"{'' if wall is None else f'  {wall * 1e3:8.3f} ms/s'}")
+            slope, used, status = fit_order([r["x"] for r in rows], [r["error"] for r in rows],
+                                            problem.scale)
+            if status == "ok" and (name in problem.not_asymptotic and not adaptive):
+                status = "ok"  # measured anyway; judged below
+            verdict = judge(name, adaptive, fixed, slope, status, expected, tol, problem)
+            curves.append({"method": name, "label": label, "kind": kind, "rows": rows,
+                           "slope": slope, "used": used, "status": status,
+                           "expected": expected, "tol": tol, "verdict": verdict})
+    return curves
+
+
+def judge(name, adaptive, fixed, slope, status, expected, tol, problem):
+    """'pass', 'FAIL', or a reason it is not judged."""
+    if expected is None:
+        return "unknown method: not judged"
+    if status == "exact":
+        return "exact to rounding"
+    if status == "failed":
+        return "FAIL (no run succeeded)"
+    if status != "ok":
+        return "not in its asymptotic range"
+    if name in problem.not_asymptotic and not (adaptive and not fixed):
+        if abs(slope - expected) > tol:
+            return "not in its asymptotic range"
+    if abs(slope - expected) <= tol:
+        return "pass"
+    if name in problem.exact:
+        return "exact to rounding"
+    return "FAIL"
+
+
+# ----------------------------------------------------------------------------------
+# outputs: plots and markdown
+
+def fmt_x(c, x):
+    return f"tol {x:.0e}" if c["kind"] == "tolerance" else f"h {x:.4g}"
+
+
+def plot(problem, curves, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.3))
+    for c in curves:
+        ok = [r for r in c["rows"] if r["error"] is not None and r["error"] > 0]
+        if not ok:
+            continue
+        floor = [max(r["error"], 1e-17) for r in ok]
+        walls = [r["wall"] for r in ok]
+        style = "--" if c["kind"] == "tolerance" else "-"
+        if all(w is not None for w in walls):
+            ax1.loglog(np.array(walls) * 1e3, floor, style, marker="o", ms=4, label=c["label"])
+        # error vs mean internal step (T / internal steps)
+        hs = [problem.T / r["internal"] if r["internal"] else r["x"] for r in ok]
+        ax2.loglog(hs, floor, style, marker="o", ms=4, label=c["label"])
+    ax1.set_xlabel("wall time per simulated second (ms)")
+    ax2.set_xlabel("mean internal step (s)")
+    for ax in (ax1, ax2):
+        ax.set_ylabel(f"error at T = {problem.T:g} s ({problem.unit})")
+        ax.grid(True, which="both", alpha=0.3)
+    ax1.set_title("work-precision")
+    ax2.set_title("convergence")
+    ax2.legend(fontsize=8)
+    fig.suptitle(problem.title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def plot_grid(results, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    n = len(results)
+    cols = 3 if n > 4 else 2
+    rows = math.ceil(n / cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(5 * cols, 3.8 * rows), squeeze=False)
+    for ax, (problem, curves) in zip(axes.flat, results):
+        for c in curves:
+            ok = [r for r in c["rows"] if r["error"] is not None and r["error"] > 0
+                  and r["wall"] is not None]
+            if ok:
+                ax.loglog([r["wall"] * 1e3 for r in ok], [max(r["error"], 1e-17) for r in ok],
+                          "--" if c["kind"] == "tolerance" else "-", marker="o", ms=3,
+                          label=c["label"])
+        ax.set_title(problem.title, fontsize=9)
+        ax.set_xlabel("ms per simulated s", fontsize=8)
+        ax.set_ylabel(f"error ({problem.unit})", fontsize=8)
+        ax.grid(True, which="both", alpha=0.3)
+    for ax in list(axes.flat)[n:]:
+        ax.axis("off")
+    axes.flat[0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def order_text(c):
+    if c["slope"] is None:
+        return "–"
+    return f"{c['slope']:.2f}"
+
+
+def write_markdown(path, results, model_methods, meta):
+    L = []
+    L.append("# Accuracy of the integration methods")
+    L.append("")
+    L.append(f"Written by `scripts/report_accuracy.py{meta['args']}` on {meta['date']} "
+             f"({meta['cpu']}). Do not edit by hand; rerun `./scripts/report_accuracy.sh`.")
+    L.append("")
+    L.append("Methods found in the FMU's `SolverMethod` enumeration: " +
+             ", ".join(f"`{n}` = {v}" for n, v, _ in model_methods) + ".")
+    L.append("")
+    L.append("**How it is measured.** Each problem is a scene turned into an FMU; each "
+             "method runs through fmpy's `FMU2Slave` (no `simulate_fmu`) with "
+             f"`solver.step` = h (steps that divide the communication step of {COMM:g} s), "
+             "or, for an adaptive method when the FMU has `solver.tolerance`, over "
+             "tolerances with `solver.step` = the communication step (it is then also run "
+             "in fixed-step use, tolerance 0). The error at the end time T is measured "
+             "against a reference computed by this script, not by the code under test. "
+             f"Wall time per simulated second: median of {meta['runs']} timed run(s) of "
+             "the `fmi2DoStep` calls alone (one instance per configuration, `fmi2Reset` "
+             "between runs; instantiation and initialisation not timed); "
+             "single thread, the FMU's whole scene. "
+             "Internal steps: from the `solver.steps` output where the FMU has it, else T/h.")
+    L.append("")
+    L.append("**Measured order**: least-squares slope of log error against log h (against "
+             "log tolerance for the adaptive method) over the points in the asymptotic "
+             "range: error below 3 % of the problem's scale (1 rad, 10 m, …) and above the "
+             "rounding floor (from the first point where the error stops falling once below "
+             "1e-8 of the scale). *exact to rounding*: every error is at the floor (the "
+             "method is exact for that solution, e.g. rk4 on a parabola). *not in its "
+             "asymptotic range*: fewer than two usable points, or a method known not to "
+             "converge smoothly there (explicit Euler near the intermediate axis drifts "
+             "across the separatrix: an O(1) orientation error at every practical step).")
+    L.append("")
+    L.append("Expected orders: " + ", ".join(f"{k} {v:g} (± {ORDER_TOLERANCE[k]:g})"
+                                           for k, v in EXPECTED_ORDER.items()) +
+             f"; adaptive, error vs tolerance: ~{ADAPTIVE_ORDER:g} (± {ADAPTIVE_TOLERANCE:g}). "
+             "Methods not in this list are reported, not judged.")
+    L.append("")
+    L.append("## Measured orders")
+    L.append("")
+    labels = []
+    for _, curves in results:
+        for c in curves:
+            if c["label"] not in labels:
+                labels.append(c["label"])
+    L.append("| problem | " + " | ".join(labels) + " |")
+    L.append("|---|" + "---:|" * len(labels))
+    for problem, curves in results:
+        by = {c["label"]: c for c in curves}
+        cells = []
+        for lab in labels:
+            c = by.get(lab)
+            if c is None:
+                cells.append("")
+                continue
+            v = c["verdict"]
+            if v == "pass":
+                cells.append(order_text(c))
+            elif v == "exact to rounding":
+                cells.append("exact" + (f" ({order_text(c)})" if c["slope"] is not None else ""))
+            elif v.startswith("not in"):
+                cells.append(f"{order_text(c)} (not asymptotic)" if c["slope"] is not None
+                             else "not asymptotic")
+            elif v.startswith("unknown"):
+                cells.append(f"{order_text(c)} (not judged)")
+            else:
+                cells.append(f"**{order_text(c)} {v}**")
+        L.append(f"| {problem.title} | " + " | ".join(cells) + " |")
+    L.append("")
+    L.append("## Cost: wall time per simulated second at the step where each method first "
+             "meets an error of 1e-6 of the problem's scale")
+    L.append("")
+    L.append("| problem | " + " | ".join(labels) + " |")
+    L.append("|---|" + "---:|" * len(labels))
+    for problem, curves in results:
+        by = {c["label"]: c for c in curves}
+        cells = []
+        for lab in labels:
+            c = by.get(lab)
+            if c is None:
+                cells.append("")
+                continue
+            hit = [r for r in c["rows"] if r["error"] is not None and r["wall"] is not None
+                   and r["error"] <= 1e-6 * problem.scale]
+            if hit:
+                r = min(hit, key=lambda r: r["wall"])
+                cells.append(f"{r['wall'] * 1e3:.3g} ms ({fmt_x(c, r['x'])})")
+            else:
+                cells.append("not reached")
+        L.append(f"| {problem.title} | " + " | ".join(cells) + " |")
+    L.append("")
+    for problem, curves in results:
+        L.append(f"## {problem.title}")
+        L.append("")
+        L.append(f"**What it tests.** {problem.tests}")
+        L.append("")
+        L.append(f"**Reference.** {problem.reference} Scale for the order fit: "
+                 f"{problem.scale:g} {problem.unit}.")
+        L.append("")
+        L.append(f"![{problem.title}](accuracy/{problem.key}.png)")
+        L.append("")
+        L.append(f"| method | step h / tolerance | error at T ({problem.unit}) | internal steps "
+                 "| ms per simulated s |")
+        L.append("|---|---:|---:|---:|---:|")
+        for c in curves:
+            for i, r in enumerate(c["rows"]):
+                err = ("failed: " + (r["failure"] or "")[:60]) if r["error"] is None \
+                    else f"{r['error']:.3e}" + ("" if i in c["used"] else " ·")
+                wall = "–" if r["wall"] is None else f"{r['wall'] * 1e3:.4g}"
+                internal = "–" if r["internal"] is None else str(r["internal"])
+                L.append(f"| {c['label'] if i == 0 else ''} | {fmt_x(c, r['x'])} | {err} | "
+                         f"{internal} | {wall} |")
+            exp = "–" if c["expected"] is None else f"{c['expected']:g}"
+            L.append(f"| | **order** | **{order_text(c)}** (expected {exp}: {c['verdict']}) | | |")
+        L.append("")
+        L.append("(· = point left out of the order fit: saturated or at the rounding floor.)")
+        L.append("")
+    path.write_text("\n".join(L) + "\n")
+
+
+# ----------------------------------------------------------------------------------
+# modes
+
+def report(args, builder, folder):
+    probs = problems()
+    if args.quick:
+        probs = [p for p in probs if p.smooth]
+    if args.problems:
+        keys = args.problems.split(",")
+        probs = [p for p in probs if p.key in keys]
+    runs = 1 if args.quick else args.runs
+    out = pathlib.Path(args.out)
+    (out / "accuracy").mkdir(parents=True, exist_ok=True)
+    results, methods_seen = [], None
+    t_start = time.perf_counter()
+    for p in probs:
+        model = Model(builder.fmu(p.scene), folder)
+        methods_seen = model.methods
+        print(f"{p.key}: {p.title} (T = {p.T:g} s; methods "
+              f"{', '.join(n for n, _, _ in model.methods)})", flush=True)
+        curves = sweep(model, p, args.quick, runs, log=(print if args.verbose else lambda s: None))
+        results.append((p, curves))
+        plot(p, curves, out / "accuracy" / f"{p.key}.png")
+        for c in curves:
+            print(f"  {c['label']:34s} order {order_text(c):>6s}  "
+                  f"(expected {c['expected'] if c['expected'] is not None else '–'}): "
+                  f"{c['verdict']}", flush=True)
+    plot_grid(results, out / "accuracy" / "work_precision.png")
+    meta = {"args": (" --quick" if args.quick else ""), "runs": runs,
+            "date": time.strftime("%Y-%m-%d"), "cpu": cpu_name()}
+    write_markdown(out / "accuracy.md", results, methods_seen or [], meta)
+    fails = [(p.key, c["label"]) for p, curves in results for c in curves
+             if c["verdict"].startswith("FAIL")]
+    print(f"wrote {out / 'accuracy.md'} and {out / 'accuracy'}/*.png "
+          f"({time.perf_counter() - t_start:.1f} s)")
+    if fails:
+        print("orders off their expected values: " +
+              ", ".join(f"{k}/{m}" for k, m in fails))
+        return 1
+    print("orders: all as expected (or not judged)")
+    return 0
+
+
+def cpu_name():
+    try:
+        for line in open("/proc/cpuinfo"):
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip() + f", {os.cpu_count()} CPUs"
+    except OSError:
+        pass
+    return "unknown CPU"
+
+
+def scene_state(model, outputs):
+    """Positions (m) and orientations (quaternions) of every body, from the outputs."""
+    pos, ori = {}, {}
+    for name in outputs:
+        if name.endswith(".position[1]"):
+            b = name[:-len(".position[1]")]
+            pos[b] = vec(outputs, f"{b}.position")
+        elif name.endswith(".orientation[1]"):
+            b = name[:-len(".orientation[1]")]
+            ori[b] = vec(outputs, f"{b}.orientation", 4)
+    return pos, ori
+
+
+def state_error(a, b):
+    """max over bodies of |position difference| components (m) and rotation angles (rad)."""
+    pa, oa = a
+    pb, ob = b
+    errs = [float(np.max(np.abs(pa[k] - pb[k]))) for k in pa]
+    errs += [rotation_angle(oa[k], ob[k]) for k in oa]
+    return max(errs) if errs else float("nan")
+
+
+def scene_mode(args, builder, folder):
+    scene_dict = json.loads(pathlib.Path(args.scene).read_text())
+    T = args.stop_time
+    base = float(scene_dict.get("solver", {}).get("step", 1e-3))
+    model = Model(builder.fmu(scene_dict), folder)
+    if not any(n.endswith((".position[1]", ".orientation[1]")) for n in model.vars):
+        sys.exit("report_accuracy: the scene exposes no position or orientation output")
+    comm = min(COMM, T)
+    names = {n: v for n, v, _ in model.methods}
+    # reference: the adaptive method at a tight tolerance, else rk4 (or the method of
+    # highest expected order) at the scene's step / 64
+    adaptive = [(n, v) for n, v, d in model.methods if model.is_adaptive(n, d)]
+    if adaptive:
+        ref_label = f"{adaptive[0][0]} at tolerance 1e-12 (solver.step {base / 4:g} s)"
+        out, _, _, fail = model.run(adaptive[0][1], T, step=base / 4, tolerance=1e-12, comm=comm)
+    else:
+        ref_name = "rk4" if "rk4" in names else max(
+            names, key=lambda n: EXPECTED_ORDER.get(n, 0))
+        ref_label = f"{ref_name} at h = {base / 64:.3g} s (scene step / 64)"
+        out, _, _, fail = model.run(names[ref_name], T, step=base / 64, comm=comm)
+    if out is None:
+        sys.exit(f"report_accuracy: the reference run failed: {fail}")
+    ref = scene_state(model, out)
+    print(f"scene {scene_dict.get('name', 'scene')} to T = {T:g} s; reference: {ref_label}")
+    print("error: max over bodies of |position component| (m) and orientation angle (rad) at T")
+    rows = []
+    factors = [8, 4, 2, 1, 0.5, 0.25] if not args.quick else [4, 1, 0.25]
+    for n, v, d in model.methods:
+        if model.is_adaptive(n, d):
+            configs = [("tolerance", tol, dict(step=comm, tolerance=tol))
+                       for tol in ([1e-3, 1e-5, 1e-7, 1e-9] if not args.quick else [1e-4, 1e-7])]
+        else:
+            hs = sorted({comm / max(1, round(comm / (base * f))) for f in factors}, reverse=True)
+            configs = [("step", h, dict(step=h, tolerance=0.0 if model.has_tolerance and
+                                         model.is_adaptive(n, d) else None)) for h in hs]
+        for kind, x, kw in configs:
+            o, wall, internal, fail = model.run(v, T, runs=args.runs if not args.quick else 1,
+                                                comm=comm, **kw)
+            err = state_error(scene_state(model, o), ref) if o is not None else None
+            rows.append({"method": n, "kind": kind, "x": x, "error": err, "wall": wall,
+                         "internal": internal, "failure": fail})
+    print(f"{'method':16s} {'step/tol':>12s} {'error':>11s} {'ms per sim s':>13s} {'steps':>9s}")
+    for r in rows:
+        x = f"tol {r['x']:.0e}" if r["kind"] == "tolerance" else f"h {r['x']:.4g}"
+        err = "failed" if r["error"] is None else f"{r['error']:.3e}"
+        wall = "–" if r["wall"] is None else f"{r['wall'] * 1e3:.4g}"
+        steps = "–" if r["internal"] is None else str(r["internal"])
+        ok = "  <= TOL" if r["error"] is not None and r["error"] <= args.tolerance else ""
+        print(f"{r['method']:16s} {x:>12s} {err:>11s} {wall:>13s} {steps:>9s}{ok}")
+    good = [r for r in rows if r["error"] is not None and r["wall"] is not None
+            and r["error"] <= args.tolerance]
+    if not good:
+        best = min((r for r in rows if r["error"] is not None), key=lambda r: r["error"],
+                   default=None)
+        print(f"recommendation: none of the tried methods and steps reaches TOL = "
+              f"{args.tolerance:g}" + ("" if best is None else
+                                       f" (smallest error {best['error']:.3e} with "
+                                       f"{best['method']}); lower solver.step below the tried range"))
+        return 2
+    r = min(good, key=lambda r: r["wall"])
+    setting = (f"solver.tolerance = {r['x']:g} (solver.step = {comm:g} s)"
+               if r["kind"] == "tolerance" else f"solver.step = {r['x']:.6g} s")
+    print(f"recommendation: solver.method = {r['method']}, {setting}: error {r['error']:.2e} "
+          f"<= {args.tolerance:g}, {r['wall'] * 1e3:.4g} ms per simulated second")
+    return 0
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--quick", action="store_true",
+                   help="a few steps per method, 1 run each, smooth problems; exit 1 on a wrong order")
+    p.add_argument("--out", default=str(ROOT / "docs"), help="output directory (default docs/)")
+    p.add_argument("--runs", type=int, default=5, help="timed runs per configuration (median)")
+    p.add_argument("--problems", help="comma-separated problem keys (default: all)")
+    p.add_argument("--scene", help="a scene file: recommend a method and step for it")
+    p.add_argument("--tolerance", type=float, help="with --scene: the error to stay below")
+    p.add_argument("--stop-time", type=float, default=2.0, help="with --scene: T (default 2 s)")
+    p.add_argument("--build", default=os.environ.get("RIGIDFMU_BUILD", str(ROOT / "build")))
+    p.add_argument("--no-build", action="store_true", help="do not (re)build the core")
+    p.add_argument("--verbose", "-v", action="store_true", help="print every run")
+    args = p.parse_args()
+    if args.scene and args.tolerance is None:
+        p.error("--scene needs --tolerance")
+    build = pathlib.Path(args.build).resolve()
+    ensure_core(build, args.no_build)
+    folder = tempfile.mkdtemp(prefix="rigidfmu-accuracy-")
+    try:
+        builder = Builder(build, folder)
+        return scene_mode(args, builder, folder) if args.scene else report(args, builder, folder)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

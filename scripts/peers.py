@@ -1,0 +1,94 @@
+"""MuJoCo on the torque-free body of the accuracy report: principal inertia (1, 2, 3)
+kg m^2, omega0 = (0.01, 5, 0.01) rad/s (near the intermediate axis), T = 20 s, no
+gravity. For each of MuJoCo's integrators and time steps: the orientation error at T
+(rotation angle, rad) against scipy's DOP853 at rtol 1e-12 on Euler's equations, and
+the wall time per step and per simulated second (median of 5 runs). Writes JSON for
+report_accuracy.py to put on its diagrams.
+
+usage: peers.py [--quick] [--out FILE]"""
+import argparse
+import json
+import pathlib
+import statistics
+import time
+
+import mujoco
+import numpy as np
+from scipy.integrate import solve_ivp
+
+I = np.array([1.0, 2.0, 3.0])
+W0 = np.array([0.01, 5.0, 0.01])
+T = 20.0
+
+MJCF = """
+<mujoco>
+  <option gravity="0 0 0" timestep="{dt}" integrator="{integrator}"/>
+  <worldbody>
+    <body name="spinner">
+      <freejoint/>
+      <inertial pos="0 0 0" mass="1" diaginertia="1 2 3"/>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+def quat_mul(a, b):
+    aw, ax, ay, az = a
+    bw, bx, by, bz = b
+    return np.array([aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
+                     aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw])
+
+
+def reference():
+    def rhs(t, y):
+        w, q = y[:3], y[3:]
+        return np.r_[np.cross(I * w, w) / I, 0.5 * quat_mul(q, np.r_[0.0, w])]
+    sol = solve_ivp(rhs, (0, T), np.r_[W0, 1, 0, 0, 0], method="DOP853", rtol=1e-12, atol=1e-14)
+    q = sol.y[3:, -1]
+    return q / np.linalg.norm(q)
+
+
+def angle(q, r):
+    rel = quat_mul(r * np.array([1, -1, -1, -1]), q)
+    return 2 * np.arcsin(min(1.0, np.linalg.norm(rel[1:])))
+
+
+def run(integrator, dt):
+    model = mujoco.MjModel.from_xml_string(MJCF.format(dt=dt, integrator=integrator))
+    data = mujoco.MjData(model)
+    data.qvel[3:6] = W0  # a free joint's angular velocity is in the body frame (= world at t = 0)
+    n = round(T / dt)
+    start = time.perf_counter()
+    for _ in range(n):
+        mujoco.mj_step(model, data)
+    seconds = time.perf_counter() - start
+    return np.array(data.qpos[3:7]), seconds / n
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--quick", action="store_true")
+    p.add_argument("--out", default=str(pathlib.Path(__file__).resolve().parents[1] / "docs" / "peers.json"))
+    args = p.parse_args()
+    q_ref = reference()
+    rows = []
+    steps = (1e-2, 1e-3) if not args.quick else (1e-2,)
+    repeats = 1 if args.quick else 5
+    for integrator in ("RK4", "Euler", "implicitfast"):
+        for dt in steps:
+            runs = [run(integrator, dt) for _ in range(repeats)]
+            q = runs[0][0]
+            per_step = statistics.median(r[1] for r in runs)
+            rows.append({"engine": f"MuJoCo {mujoco.__version__}", "method": integrator, "problem": "torque-free, intermediate axis",
+                         "dt": dt, "error": float(angle(q, q_ref)), "us_per_step": per_step * 1e6,
+                         "s_per_simulated_s": per_step / dt})
+            print(f"MuJoCo {integrator:12s} dt={dt:g}: error {rows[-1]['error']:.3g} rad, "
+                  f"{per_step * 1e6:.2f} us/step, {per_step / dt:.3g} s per simulated s")
+    pathlib.Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+    pathlib.Path(args.out).write_text(json.dumps(rows, indent=1))
+    print(f"wrote {args.out}")
+
+
+if __name__ == "__main__":
+    main()

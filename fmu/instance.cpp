@@ -96,6 +96,7 @@ void Instance::restart() {
   state_ = kInstantiated;
   startTime_ = time_ = lastSuccessfulTime_ = 0.0;
   wantsToTerminate_ = false;
+  substepNote_.clear();
 }
 
 void Instance::log(fmi2Status status, const char* category, const std::string& message) const {
@@ -290,13 +291,18 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
     const double from = static_cast<double>(k) * model_.maxStep;
     const double to = k + 1 == n ? h : static_cast<double>(k + 1) * model_.maxStep;
     const rigid::StepResult r = rigid::step(model_, data_, to - from);
+    if (r.ok) noteSubsteps(r, to - from);
     if (!r.ok) {
       time_ = lastSuccessfulTime_ = tc + from;
       state_ = kStepFailed;
       wantsToTerminate_ = true;
       const std::string cause =
-          r.body >= 0
-              ? "the state of body " + model_.bodies[r.body].name + " is not finite"
+          r.body >= 0 ? "the state of body " + model_.bodies[r.body].name + " is not finite"
+          : !r.cause.empty()
+              ? std::string("method ") + rigid::methodName(model_.method) +
+                    " is outside its stability region (" + r.cause + "): the internal step of " +
+                    num(to - from) + " s would need more than 1e6 sub-steps; a solver.step of " +
+                    num(r.stableStep) + " s, or the method rosenbrock or dopri5, would work"
               : "the adaptive method could not meet solver.tolerance = " + num(model_.tolerance) +
                     " (its step fell below 1e-14 of the step; raise the tolerance)";
       const std::string hint =
@@ -311,6 +317,25 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
   }
   time_ = lastSuccessfulTime_ = tc + h;
   return fmi2OK;
+}
+
+void Instance::noteSubsteps(const rigid::StepResult& r, double h) {
+  const std::string note =
+      r.substeps > 1 ? r.cause + ":" + std::to_string(r.substeps) : std::string();
+  if (note == substepNote_) return;
+  substepNote_ = note;
+  const std::string why =
+      r.cause == "fast body"
+          ? std::string("a fast body could pass through what it can hit")
+          : std::string("method ") + rigid::methodName(model_.method) +
+                " is outside its stability region (" + r.cause + ")";
+  if (r.substeps > 1)
+    log(fmi2Warning, "logStatusWarning",
+        "fmi2DoStep: " + why + " at the internal step of " + num(h) + " s; sub-stepping it " +
+            std::to_string(r.substeps) + " times (steps of at most " + num(r.stableStep) +
+            " s; see solver.steps)");
+  else
+    log(fmi2OK, "logEvents", "fmi2DoStep: no sub-stepping needed any more");
 }
 
 fmi2Status Instance::getRealStatus(fmi2StatusKind kind, fmi2Real* value) {

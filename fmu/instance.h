@@ -75,6 +75,8 @@ class Instance {
   fmi2Status write(const Variable& v, double value);
   double read(const Variable& v) const;
   bool setupPhase() const { return state_ & (kInstantiated | kInitializationMode); }
+  // Logs when the sub-stepping of the internal steps starts, changes or stops.
+  void noteSubsteps(const rigid::StepResult& r, double h);
 
   std::string name_;
   fmi2CallbackFunctions functions_;
@@ -91,6 +93,7 @@ class Instance {
   double time_ = 0.0;       // s, time of the last communication point
   double lastSuccessfulTime_ = 0.0;
   bool wantsToTerminate_ = false;  // fmi2Terminated status
+  std::string substepNote_;        // the sub-stepping last reported ("cause:count")
 };
 
 }  // namespace rigidfmu

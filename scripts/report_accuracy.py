@@ -47,13 +47,14 @@ G = 9.81
 # Expected orders of the methods this script knows (error vs step; the adaptive method's
 # error vs tolerance is expected near 1) and the tolerance on the measured slope.
 EXPECTED_ORDER = {"euler": 1.0, "symplecticEuler": 1.0, "splitting": 2.0, "rk4": 4.0,
-                  "lieRk4": 4.0, "dopri5": 5.0}
+                  "lieRk4": 4.0, "dopri5": 5.0, "rosenbrock": 2.0}
 ORDER_TOLERANCE = {"euler": 0.25, "symplecticEuler": 0.3, "splitting": 0.4, "rk4": 0.5,
-                   "lieRk4": 0.5, "dopri5": 0.8}
+                   "lieRk4": 0.5, "dopri5": 0.8, "rosenbrock": 0.4}
 ADAPTIVE_ORDER, ADAPTIVE_TOLERANCE = 1.0, 0.4
 ADAPTIVE_NAMES = {"dopri5", "dopri45", "rk45", "rkf45", "cashkarp", "bs23"}
 
 COMM = 0.5  # s, communication step of the runs (every step below divides it)
+SPIN_STEPS = {1: 8, 2: 4}  # the spins (omega up to 5 rad/s) need 8x finer steps at order 1
 
 
 # ----------------------------------------------------------------------------------
@@ -180,12 +181,16 @@ class Problem:
     per expected order, smooth (run in --quick and judged)."""
 
     def __init__(self, key, title, scene, T, error, unit, tests, reference, scale,
-                 smooth=True, step_scale=1.0, not_asymptotic=(), exact=()):
+                 smooth=True, step_scale=None, not_asymptotic=(), unjudged=None, note=""):
         self.key, self.title, self.scene, self.T = key, title, scene, T
         self.error, self.unit, self.tests, self.reference = error, unit, tests, reference
-        self.scale, self.smooth, self.step_scale = scale, smooth, step_scale
-        self.not_asymptotic = set(not_asymptotic)  # methods expected off their asymptotic range
-        self.exact = set(exact)                    # methods exact on it up to rounding
+        self.scale, self.smooth = scale, smooth
+        self.step_scale = step_scale or {}  # order class (1, 2, 4) -> factor on 1/h
+        # methods not expected in their asymptotic range ("*": any method whose slope
+        # is off); their orders are reported, not judged
+        self.not_asymptotic = set(not_asymptotic)
+        self.unjudged = unjudged  # reason why no order is judged on this problem
+        self.note = note          # findings worth a paragraph in the report
 
 
 def spin_problem(name, inertia, omega0):
@@ -213,7 +218,14 @@ def problems():
         "(tests the rotational update q' = 1/2 omega q with omega = I(t)^-1 L).",
         "scipy DOP853 (rtol 1e-12, atol 1e-14) on Euler's equations in the body frame "
         "with q' = 1/2 q (0, omega_body); error = rotation angle between q(T) and q_ref(T).",
-        1.0, not_asymptotic={"euler"}))
+        1.0, step_scale=SPIN_STEPS, not_asymptotic={"*"},
+        note="Near the separatrix the error at T is not a clean power of h for any "
+             "method: explicit Euler crosses the separatrix (O(1) error at every practical "
+             "step); rk4's error is of order 4 only until the first flip (t < 4 s) and "
+             "behaves like h^5 after it at every step above the rounding floor (measured "
+             "at every 0.5 s from 0 to 20 s with h = 7.8, 3.9 and 2.0 ms), its h^4 term "
+             "being overtaken by one that the flips amplify. Orders here are reported, "
+             "not judged; (b) and (c) are the smooth rotation cases."))
 
     # (b) torque-free near the major axis
     w0b = (0.4, 0.3, 3.0)
@@ -225,7 +237,7 @@ def problems():
         "Free rotation, inertia (1, 2, 3) kg m2, omega0 = (0.4, 0.3, 3.0) rad/s, T = 20 s: "
         "a stable wobble about the major axis, the smooth case of free rotation.",
         "scipy DOP853 (rtol 1e-12) on Euler's equations, as in (a); error = rotation angle.",
-        1.0))
+        1.0, step_scale=SPIN_STEPS))
 
     # (c) symmetric top, regular precession
     I1, I3, w0c = 1.0, 2.0, (0.5, 0.2, 4.0)
@@ -242,7 +254,7 @@ def problems():
         "only come through the torque input, which holds its value over a communication "
         "step — the error would then be the master's zero-order hold, not the method's.",
         "closed form q(t) = rot(L/|L|, |L| t / I1) rot(e3, -Omega t); error = rotation "
-        "angle at T.", 1.0))
+        "angle at T.", 1.0, step_scale=SPIN_STEPS))
 
     # (d) linear drag
     r, m, b = 0.1, 1.0, 2.0
@@ -323,7 +335,13 @@ def problems():
         "T = 1.5 s, in the flight after the second impact: impacts located inside the "
         "step, the impulse, and the rest of the step integrated after it.",
         "closed form: the piecewise parabola with impacts at t1 = sqrt(2 h0/g), "
-        "t_(n+1) = t_n + 2 e^n t1; error = |x(T) - x_ref(T)|.", 1.0, smooth=False))
+        "t_(n+1) = t_n + 2 e^n t1; error = |x(T) - x_ref(T)|.", 1.0, smooth=False,
+        unjudged="the impact handling limits every method",
+        note="The impact is located inside the step, but the error after it is of order "
+             "h^1 to h^1.3 whatever the method (rk4, exact on each parabola, shows it "
+             "alone), and not monotonic in h: for some steps it sits on a plateau. The "
+             "accuracy of a bouncing body is set by the impact handling, not by the "
+             "integration method."))
 
     # (h) floating box, heave
     size, mb, zh0, Th = (1.0, 1.0, 0.5), 250.0, 0.1, 2.0
@@ -341,7 +359,11 @@ def problems():
         "The quadratic drag |v| v is only C1 where the heave turns (v = 0).",
         "scipy DOP853 (rtol 1e-12) on the 1-DOF heave equation with the buoyancy and "
         "drag of docs/media.md (Leith's linear and C_d 1.05 quadratic drag, scaled by the "
-        "submerged fraction); error = |x(T) - x_ref(T)|.", 0.1, smooth=False))
+        "submerged fraction); error = |x(T) - x_ref(T)|.", 0.1, smooth=False,
+        not_asymptotic={"*"},
+        note="The drag |v| v has a discontinuous second derivative at the turning points, "
+             "so methods of order above 2 may show irregular convergence here; slopes "
+             "off their expected value are reported as not in the asymptotic range."))
     return P
 
 
@@ -469,17 +491,24 @@ class Model:
 # ----------------------------------------------------------------------------------
 # sweeps and orders
 
+def order_class(order):
+    if order is None:
+        return 2
+    return 1 if order <= 1.5 else 2 if order <= 3 else 4
+
+
 def step_list(order, quick, scale=1.0):
     """Steps h = COMM / N for a method of the given expected order: from a coarse step
     where the error is a few per cent to one where it nears rounding."""
-    if order is None:
-        order = 2.0
-    if order <= 1.5:
-        Ns = [50, 100, 200, 400, 800, 1600, 3200] if not quick else [100, 200, 400, 800]
-    elif order <= 3:
-        Ns = [10, 20, 40, 80, 160, 320, 640] if not quick else [20, 40, 80, 160]
-    else:
+    cls = order_class(order)
+    if cls == 1:
+        Ns = [50, 100, 200, 400, 800, 1600, 3200] if not quick else [200, 400, 800]
+    elif cls == 2:
+        Ns = [10, 20, 40, 80, 160, 320, 640] if not quick else [40, 80, 160]
+    elif order < 4.5:
         Ns = [4, 8, 16, 32, 64, 128, 256] if not quick else [16, 32, 64]
+    else:
+        Ns = [2, 4, 8, 16, 32, 64, 128] if not quick else [4, 8, 16]
     return [COMM / max(1, round(N * scale)) for N in Ns]
 
 
@@ -490,13 +519,14 @@ def tolerance_list(quick):
 def fit_order(xs, errs, scale):
     """Least-squares slope of log error vs log x over the points in the asymptotic range:
     below the saturation (3 % of the problem's scale) and above the rounding floor
-    (points from where the error stops falling, once below 1e-8 of the scale).
+    (1e-12 of the scale, and points from where the error stops falling once below 1e-8
+    of it).
     Returns (slope or None, indices used, status)."""
     pts = sorted((x, e, i) for i, (x, e) in enumerate(zip(xs, errs)) if e is not None
                  and np.isfinite(e))[::-1]  # coarse to fine
     if not pts:
         return None, [], "failed"
-    floor = 1e-11 * scale
+    floor = 1e-12 * scale
     if all(e <= floor for _, e, _ in pts):
         return None, [], "exact"
     used, prev = [], None
@@ -511,6 +541,9 @@ def fit_order(xs, errs, scale):
             used.append(i)
         prev = (x, e)
     if len(used) < 2:
+        finite = [e for _, e, _ in pts]
+        if len(finite) >= 3 and finite[-1] > 0.5 * finite[0] and finite[-1] >= 0.03 * scale:
+            return None, used, "no convergence"
         return None, used, "not in its asymptotic range"
     slope = float(np.polyfit(np.log([xs[i] for i in used]), np.log([errs[i] for i in used]), 1)[0])
     return slope, used, "ok"
@@ -536,7 +569,7 @@ def sweep(model, problem, quick, runs, log):
             if adaptive and not fixed:
                 xs, kind = tolerance_list(quick), "tolerance"
             else:
-                xs, kind = step_list(expected, quick, problem.step_scale), "step"
+                xs, kind = step_list(expected, quick, problem.step_scale.get(order_class(expected), 1.0)), "step"
             rows = []
             for x in xs:
                 if kind == "tolerance":
@@ -555,8 +588,6 @@ def sweep(model, problem, quick, runs, log):
                     f"{'' if wall is None else f'  {wall * 1e3:8.3f} ms/s'}")
             slope, used, status = fit_order([r["x"] for r in rows], [r["error"] for r in rows],
                                             problem.scale)
-            if status == "ok" and (name in problem.not_asymptotic and not adaptive):
-                status = "ok"  # measured anyway; judged below
             verdict = judge(name, adaptive, fixed, slope, status, expected, tol, problem)
             curves.append({"method": name, "label": label, "kind": kind, "rows": rows,
                            "slope": slope, "used": used, "status": status,
@@ -565,22 +596,27 @@ def sweep(model, problem, quick, runs, log):
 
 
 def judge(name, adaptive, fixed, slope, status, expected, tol, problem):
-    """'pass', 'FAIL', or a reason it is not judged."""
+    """'pass', 'FAIL...', or why it is not judged."""
     if expected is None:
         return "unknown method: not judged"
     if status == "exact":
         return "exact to rounding"
     if status == "failed":
         return "FAIL (no run succeeded)"
+    if problem.unjudged:
+        return "not judged: " + problem.unjudged
+    anyway = "*" in problem.not_asymptotic or (name in problem.not_asymptotic and not
+                                               (adaptive and not fixed))
+    if status == "no convergence":
+        return "not in its asymptotic range" if anyway else "FAIL (no convergence)"
     if status != "ok":
         return "not in its asymptotic range"
-    if name in problem.not_asymptotic and not (adaptive and not fixed):
-        if abs(slope - expected) > tol:
-            return "not in its asymptotic range"
-    if abs(slope - expected) <= tol:
+    # steeper than expected is allowed by a further 0.5 (a small leading error
+    # coefficient steepens the slope before the asymptotic range); flatter is not
+    if expected - tol <= slope <= expected + tol + 0.5:
         return "pass"
-    if name in problem.exact:
-        return "exact to rounding"
+    if anyway:
+        return "not in its asymptotic range"
     return "FAIL"
 
 
@@ -692,7 +728,28 @@ def write_markdown(path, results, model_methods, meta):
     L.append("Expected orders: " + ", ".join(f"{k} {v:g} (± {ORDER_TOLERANCE[k]:g})"
                                            for k, v in EXPECTED_ORDER.items()) +
              f"; adaptive, error vs tolerance: ~{ADAPTIVE_ORDER:g} (± {ADAPTIVE_TOLERANCE:g}). "
-             "Methods not in this list are reported, not judged.")
+             "A slope steeper than expected passes up to a further 0.5 (a small leading "
+             "error coefficient steepens the slope before the asymptotic range); a sweep "
+             "whose error does not fall at all fails (*no convergence*). "
+             "Methods not in this list are reported, not judged. `--quick` returns a "
+             "non-zero exit status when a judged order fails.")
+    L.append("")
+    fails = [(p, c) for p, curves in results for c in curves if c["verdict"].startswith("FAIL")]
+    L.append("## Findings")
+    L.append("")
+    if fails:
+        for p, c in fails:
+            errs = [r["error"] for r in c["rows"] if r["error"] is not None]
+            extra = (f" The error does not fall with the step: {min(errs):.3g} to "
+                     f"{max(errs):.3g} {p.unit} over the sweep, so the FMU's result itself "
+                     "is off the reference." if c["status"] == "no convergence" and errs else "")
+            L.append(f"- **{c['label']}** on *{p.title}*: {c['verdict']}, measured order "
+                     f"{order_text(c)}, expected {c['expected']:g} ± {c['tol']:g}.{extra}")
+    else:
+        L.append("- Every judged order is within its tolerance.")
+    for p, _ in results:
+        if p.note:
+            L.append(f"- *{p.title}*: {p.note}")
     L.append("")
     L.append("## Measured orders")
     L.append("")
@@ -719,6 +776,8 @@ def write_markdown(path, results, model_methods, meta):
             elif v.startswith("not in"):
                 cells.append(f"{order_text(c)} (not asymptotic)" if c["slope"] is not None
                              else "not asymptotic")
+            elif v.startswith("not judged"):
+                cells.append(f"{order_text(c)} (not judged)")
             elif v.startswith("unknown"):
                 cells.append(f"{order_text(c)} (not judged)")
             else:
@@ -755,6 +814,9 @@ def write_markdown(path, results, model_methods, meta):
         L.append(f"**Reference.** {problem.reference} Scale for the order fit: "
                  f"{problem.scale:g} {problem.unit}.")
         L.append("")
+        if problem.note:
+            L.append(f"**Finding.** {problem.note}")
+            L.append("")
         L.append(f"![{problem.title}](accuracy/{problem.key}.png)")
         L.append("")
         L.append(f"| method | step h / tolerance | error at T ({problem.unit}) | internal steps "
@@ -883,7 +945,7 @@ def scene_mode(args, builder, folder):
             configs = [("tolerance", tol, dict(step=comm, tolerance=tol))
                        for tol in ([1e-3, 1e-5, 1e-7, 1e-9] if not args.quick else [1e-4, 1e-7])]
         else:
-            hs = sorted({comm / max(1, round(comm / (base * f))) for f in factors}, reverse=True)
+            hs = sorted({base * f for f in factors if base * f <= comm}, reverse=True)
             configs = [("step", h, dict(step=h, tolerance=0.0 if model.has_tolerance and
                                          model.is_adaptive(n, d) else None)) for h in hs]
         for kind, x, kw in configs:

@@ -41,18 +41,22 @@ void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
 #endif
 }
 
+void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body,
+                            const BodyInput& input, const BodyState& y, BodyAux& aux,
+                            BodyDerivative& dy) {
+  computeAuxiliaries(body, y, aux);
+  accumulateForces(model, body, input, y, aux);
+  dy.dX = aux.V;
+  dy.dq = spin(aux.omega, y.q);
+  dy.dP = aux.F;
+  dy.dL = aux.T;
+}
+
 void evaluateDerivative(const WorldModel& model, const std::vector<BodyInput>& input,
                         const std::vector<BodyState>& Y, std::vector<BodyAux>& aux,
                         std::vector<BodyDerivative>& dY) {
-  for (size_t i = 0; i < Y.size(); ++i) {
-    const BodyConstants& body = model.bodies[i];
-    computeAuxiliaries(body, Y[i], aux[i]);
-    accumulateForces(model, body, input[i], Y[i], aux[i]);
-    dY[i].dX = aux[i].V;
-    dY[i].dq = spin(aux[i].omega, Y[i].q);
-    dY[i].dP = aux[i].F;
-    dY[i].dL = aux[i].T;
-  }
+  for (size_t i = 0; i < Y.size(); ++i)
+    evaluateBodyDerivative(model, model.bodies[i], input[i], Y[i], aux[i], dY[i]);
 }
 
 }  // namespace rigid

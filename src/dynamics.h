@@ -14,6 +14,11 @@ struct WorldModel;
 void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
                              const BodyInput& input, const BodyState& y, BodyAux& aux);
 
+// dY/dt of one body (bodies exert no forces on each other outside contacts).
+void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body,
+                            const BodyInput& input, const BodyState& y, BodyAux& aux,
+                            BodyDerivative& dy);
+
 // For every body: auxiliaries of Y, the accumulated force and torque, and
 // dY/dt = (V, 1/2 omega q, F, T). aux is filled as a by-product.
 void evaluateDerivative(const WorldModel& model, const std::vector<BodyInput>& input,

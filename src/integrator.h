@@ -20,7 +20,17 @@ enum class Method : int {
   Splitting = 4,        // kick-drift-kick with the Dullweber-Leimkuhler-McLachlan free rotation
   LieRK4 = 5,           // Runge-Kutta-Munthe-Kaas 4: q moves by exponentials, unit by construction
   Dopri5 = 6,           // adaptive embedded Dormand-Prince 5(4)
+  Rosenbrock = 7,       // linearly implicit ROS2, L-stable: stiff drag and buoyancy
 };
+
+// How far a fixed-step explicit method's step may go (h times the rate) before it
+// leaves its stability region: fast spin (|omega|), damping (drag rate) and
+// oscillation (heave frequency). Infinity: no limit (exact rotations, adaptive or
+// implicit methods).
+struct StabilityLimits {
+  double spin, damping, oscillation;
+};
+StabilityLimits stabilityLimits(Method method);
 
 struct MethodInfo {
   Method method;

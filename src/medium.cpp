@@ -582,3 +582,41 @@ void addMediumForces(const Medium& medium, const BodyConstants& body, const Body
 }
 
 }  // namespace rigid
+
+namespace rigid {
+
+MediumRates mediumRates(const Medium& medium, const BodyConstants& body, const BodyState& y,
+                        const BodyAux& aux, const Vec3& gravity) {
+  MediumRates rates;
+  const SubmergedPart part = submergedPart(body.shape, y.X, aux.R, medium.min, medium.max);
+  if (!(part.volume > 0.0)) return rates;
+  const double rho = medium.density, mu = medium.viscosity;
+  const double volume = shapeVolume(body.shape);
+  const double fraction = std::min(1.0, part.volume / volume);
+  // Translational damping: the largest rate of the drag's velocity Jacobian, Stokes
+  // along the worst body axis plus the pressure drag's d(|v| v)/dv = 2 |v| bound.
+  double stokes = 0.0, area = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    stokes = std::max(stokes, stokesFactor(body.shape, Vec3::Unit(i)));
+    area = std::max(area, dragArea(body.shape, Vec3::Unit(i)));
+  }
+  const double speed = aux.V.norm() + aux.omega.norm() * std::cbrt(volume);
+  rates.damping = fraction * (mu * stokes + rho * area * speed) / body.mass;
+  const double angular = mu * rotationalStokesFactor(body.shape) +
+                         rho * aux.omega.norm() * pressureTorqueFactor(body.shape).maxCoeff();
+  rates.damping = std::max(rates.damping, fraction * angular / body.principalMoments.minCoeff());
+  // Heave: buoyancy's restoring rate sqrt(rho |g| A_wp / m), with the waterplane area
+  // A_wp = dV_sub/d(depth) by a central difference along gravity.
+  const double g = gravity.norm();
+  if (g > 0.0 && rho > 0.0 && part.volume < volume) {
+    const Vec3 down = gravity / g;
+    const double delta = 1e-4 * std::cbrt(volume);
+    const double deeper = submergedPart(body.shape, y.X + delta * down, aux.R, medium.min, medium.max).volume;
+    const double higher = submergedPart(body.shape, y.X - delta * down, aux.R, medium.min, medium.max).volume;
+    const double waterplane = std::max(0.0, (deeper - higher) / (2.0 * delta));
+    rates.oscillation = std::sqrt(rho * g * waterplane / body.mass);
+  }
+  return rates;
+}
+
+}  // namespace rigid

@@ -24,4 +24,14 @@ struct Medium {
 void addMediumForces(const Medium& medium, const BodyConstants& body, const BodyState& y,
                      const Vec3& gravity, BodyAux& aux);
 
+// Rates (1/s) of the medium's forces on a body that bound an explicit method's step:
+// damping, the largest rate of the drag (linear and angular, per unit of velocity);
+// oscillation, the angular frequency of the body's heave on buoyancy when it floats.
+struct MediumRates {
+  double damping = 0.0;
+  double oscillation = 0.0;
+};
+MediumRates mediumRates(const Medium& medium, const BodyConstants& body, const BodyState& y,
+                        const BodyAux& aux, const Vec3& gravity);
+
 }  // namespace rigid

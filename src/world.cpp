@@ -98,6 +98,13 @@ int firstNonFinite(const std::vector<BodyState>& Y) {
 }
 
 // Y(t + tau) into next: auxiliaries -> forces -> derivative per stage, then unit q.
+StepResult failed(int body) {
+  StepResult r;
+  r.ok = false;
+  r.body = body;
+  return r;
+}
+
 // Returns the integrator's steps (0: the adaptive method failed its tolerance).
 int advance(const WorldModel& model, WorldData& data, double tau, std::vector<BodyState>& next) {
   const int steps = integrate(model, data, tau, next);
@@ -138,7 +145,7 @@ int advance(const WorldModel& model, WorldData& data, double tau, std::vector<Bo
 
 // Accepts next as the new state if it is finite.
 StepResult commit(const WorldModel& model, WorldData& data, std::vector<BodyState>& next) {
-  if (const int bad = firstNonFinite(next); bad >= 0) return {false, bad};
+  if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);
   std::swap(data.Y, next);
   refreshAuxiliaries(model, data);
   return {};
@@ -192,7 +199,7 @@ StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
 #if !(RIGID_WITH_SURFACES || RIGID_WITH_COLLISIONS)
   // Nothing to touch: the integrator alone.
   const int steps = advance(model, data, h, next);
-  if (steps == 0) return {false, -1};
+  if (steps == 0) return failed(-1);
   data.steps += steps;
   return commit(model, data, next);
 #else
@@ -202,7 +209,7 @@ StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
   for (int impacts = 0;; ++impacts) {
     const double rest = h - done;
     const int steps = advance(model, data, rest, next);
-    if (steps == 0) return {false, -1};
+    if (steps == 0) return failed(-1);
     double taken = rest;
     if (impacts < kMaxImpactsPerStep && anyImpact(model, data, h, next) &&
         !anyImpact(model, data, h, data.Y))
@@ -216,13 +223,58 @@ StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
 #endif
 }
 
+
+// Explicit fixed-step methods outside their stability region sub-step: the step is
+// split so that h |omega|, h times the drag rate and h times the heave frequency of
+// every body stay within the method's region (integrator.h). Fills result's cause,
+// stable step and sub-step count.
+void stabilitySubsteps(const WorldModel& model, const WorldData& data, double h, StepResult& r) {
+  const StabilityLimits limits = stabilityLimits(model.method);
+  auto consider = [&](double rate, double limit, const char* cause) {
+    if (!(rate > 0.0) || !std::isfinite(limit)) return;
+    const double stable = limit / rate;
+    if (h <= stable) return;
+    const double n = std::ceil(h / stable - 1e-9);  // a step at the limit within rounding is fine
+    if (n > static_cast<double>(r.substeps)) {
+      r.substeps = n > 1e15 ? std::numeric_limits<long>::max() : static_cast<long>(n);
+      r.cause = cause;
+      r.stableStep = stable;
+    }
+  };
+  for (size_t i = 0; i < data.Y.size(); ++i) {
+    consider(data.aux[i].omega.norm(), limits.spin, "spin");
+#if RIGID_WITH_MEDIA
+    for (const Medium& medium : model.media) {
+      const MediumRates rates = mediumRates(medium, model.bodies[i], data.Y[i], data.aux[i], model.gravity);
+      consider(rates.damping, limits.damping, "drag");
+      consider(rates.oscillation, limits.oscillation, "buoyancy heave");
+    }
+#endif
+  }
+}
+
 }  // namespace
 
 StepResult step(const WorldModel& model, WorldData& data, double h) {
-  const int n = collisionSubsteps(model, data, h);
-  for (int k = 0; k < n; ++k)
-    if (const StepResult r = stepOnce(model, data, h / n); !r.ok) return r;
-  return {};
+  // More than this many sub-steps in one step is refused: the step should be smaller.
+  constexpr long kMaxSubsteps = 1000000;
+  StepResult plan;
+  stabilitySubsteps(model, data, h, plan);
+  const long fast = collisionSubsteps(model, data, h);
+  if (fast > plan.substeps) {
+    plan.substeps = fast;
+    plan.cause = "fast body";
+    plan.stableStep = h / fast;
+  }
+  if (plan.substeps > kMaxSubsteps) {
+    plan.ok = false;
+    return plan;
+  }
+  for (long k = 0; k < plan.substeps; ++k) {
+    StepResult r = stepOnce(model, data, h / static_cast<double>(plan.substeps));
+    if (!r.ok) return r;
+  }
+  return plan;
 }
 
 double totalEnergy(const WorldModel& model, const WorldData& data) {

@@ -61,7 +61,12 @@ void refreshAuxiliaries(const WorldModel& model, WorldData& data);
 struct StepResult {
   bool ok = true;
   int body = -1;  // when !ok: first body whose new state is not finite, or -1 when the
-                  // adaptive method could not meet its tolerance
+                  // adaptive method could not meet its tolerance or sub-steps would not do
+  // Sub-steps the step was split into, and why: an explicit method outside its
+  // stability region ("spin", "drag", "buoyancy heave") or a fast body ("fast body").
+  long substeps = 1;
+  std::string cause;
+  double stableStep = 0.0;  // s, the largest step that cause allows (when cause is set)
 };
 
 // Advances the world by one internal step h (s). On a non-finite result the step is

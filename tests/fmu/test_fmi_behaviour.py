@@ -108,7 +108,7 @@ def test_non_finite_values_are_refused(slave, value):
 @pytest.mark.parametrize("name,value,limit", [("ball.mass", -1.0, "must be > 0"),
                                               ("ball.restitution", 1.5, "must be in [0, 1]"),
                                               ("solver.step", 0.0, "must be > 0"),
-                                              ("solver.method", 7, "must be one of 1 (euler), 2 (rk4)")])
+                                              ("solver.method", 99, "must be one of 1 (euler), 2 (rk4)")])
 def test_parameter_limits(slave, name, value, limit):
     assert status_of(lambda: slave.set_values({name: value})) == "Error"
     assert f"{name}: {limit}" in last_error(slave)

@@ -40,7 +40,8 @@ def test_every_variable_has_unit_or_enumeration_type_and_description(fmu_of):
         else:
             assert v.type == "Enumeration" and v.declaredType.name == "SolverMethod", v.name
     assert [(i.name, int(i.value)) for i in md.typeDefinitions[0].items] == [
-        ("euler", 1), ("rk4", 2), ("symplecticEuler", 3), ("splitting", 4), ("lieRk4", 5), ("dopri5", 6)]
+        ("euler", 1), ("rk4", 2), ("symplecticEuler", 3), ("splitting", 4), ("lieRk4", 5), ("dopri5", 6),
+        ("rosenbrock", 7)]
 
 
 def test_contract_variable_names(fmu_of):

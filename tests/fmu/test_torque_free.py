@@ -115,3 +115,11 @@ def test_dopri5_meets_its_tolerance_and_reports_truthfully(fmu_of):
                      output=["solver.steps", "solver.errorEstimate"])
     assert list(r["solver.steps"][1:]) == [500, 500]
     assert np.all(r["solver.errorEstimate"] == 0.0)
+
+
+def test_rosenbrock_is_second_order(fmu_of):
+    omega0 = (0.4, 0.3, 3.0)
+    fmu = fmu_of(scenes.free_spin(INERTIA, omega0, name="SmoothSpin"))
+    steps = [0.02, 0.01, 0.005, 0.0025]
+    errors = [orientation_error(fmu, 7, h, 2.0, omega0) for h in steps]
+    assert abs(loglog_slope(np.array(steps), np.array(errors)) - 2.0) < 0.3, errors

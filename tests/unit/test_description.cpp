@@ -230,7 +230,7 @@ TEST_F(Description, WriteValueRefusesNonPositiveSolverStep) {
 TEST_F(Description, WriteValueRefusesUnknownSolverMethod) {
   const Variable& v = find(vars, "solver.method");
   ASSERT_EQ(model.method, rigid::Method::Euler);
-  for (double bad : {0.0, 7.0, -1.0, 1.5, 1e10}) {
+  for (double bad : {0.0, 99.0, -1.0, 1.5, 1e10}) {
     const std::string why = rigidfmu::writeValue(v, bad, model, data, Phase::Setup);
     EXPECT_TRUE(contains(why, "solver.method")) << bad << ": " << why;
     EXPECT_TRUE(contains(why, "1 (euler)")) << why;

@@ -152,7 +152,7 @@ TEST(Scene, GravityNotThreeNumbers) {
 
 TEST(Scene, SolverMethodUnknown) {
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"method": "rk5"}, )"),
-                     "solver.method: must be one of euler, rk4, symplecticEuler, splitting, lieRk4, dopri5, got \"rk5\"");
+                     "solver.method: must be one of euler, rk4, symplecticEuler, splitting, lieRk4, dopri5, rosenbrock, got \"rk5\"");
 }
 
 TEST(Scene, SolverStepNotPositive) {

@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# scripts/report_accuracy.sh [--quick] [--out DIR] [--scene SCENE.json --tolerance TOL ...]
+# The accuracy report of the integration methods (scripts/report_accuracy.py): builds the
+# core like build_fmu.sh (in build/, or $RIGIDFMU_BUILD), then runs the report with the
+# venv's python; every argument is passed through. Default: writes docs/accuracy.md and
+# docs/accuracy/*.png.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+[ -n "${RIGIDFMU_SKIP_SETUP:-}" ] || "$root/scripts/setup.sh"
+build="${RIGIDFMU_BUILD:-$root/build}"
+cmake_bin=/usr/bin/cmake
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  "$cmake_bin" -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+fi
+"$cmake_bin" --build "$build" -j"$(nproc)" --target rigidfmu-describe rigidfmu_fmus >/dev/null
+exec "$root/.venv/bin/python" "$root/scripts/report_accuracy.py" --build "$build" --no-build "$@"

@@ -627,11 +627,24 @@ def fmt_x(c, x):
     return f"tol {x:.0e}" if c["kind"] == "tolerance" else f"h {x:.4g}"
 
 
-def plot(problem, curves, path):
+def peer_points(problem, peers):
+    """The peers' measurements (scripts/peers.py, JSON) on this problem."""
+    return [p for p in peers if problem.key == "intermediate_axis"
+            and p.get("problem", "").startswith("torque-free, intermediate axis")]
+
+
+def plot(problem, curves, path, peers=()):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.3))
+    for k, p in enumerate(peer_points(problem, peers)):
+        marker = "^sDvo<>p"[k % 8]
+        ax1.loglog([p["s_per_simulated_s"] * 1e3], [max(p["error"], 1e-17)], marker, ms=7,
+                   color="k", mfc="none", label=f"{p['engine']} {p['method']} dt {p['dt']:g}")
+        ax2.loglog([p["dt"]], [max(p["error"], 1e-17)], marker, ms=7, color="k", mfc="none")
+    if peer_points(problem, peers):
+        ax1.legend(fontsize=7)
     for c in curves:
         ok = [r for r in c["rows"] if r["error"] is not None and r["error"] > 0]
         if not ok:
@@ -851,6 +864,8 @@ def report(args, builder, folder):
     runs = 1 if args.quick else args.runs
     out = pathlib.Path(args.out)
     (out / "accuracy").mkdir(parents=True, exist_ok=True)
+    peers_file = pathlib.Path(args.peers)
+    peers = json.loads(peers_file.read_text()) if peers_file.is_file() else []
     results, methods_seen = [], None
     t_start = time.perf_counter()
     for p in probs:
@@ -860,7 +875,7 @@ def report(args, builder, folder):
               f"{', '.join(n for n, _, _ in model.methods)})", flush=True)
         curves = sweep(model, p, args.quick, runs, log=(print if args.verbose else lambda s: None))
         results.append((p, curves))
-        plot(p, curves, out / "accuracy" / f"{p.key}.png")
+        plot(p, curves, out / "accuracy" / f"{p.key}.png", peers)
         for c in curves:
             print(f"  {c['label']:34s} order {order_text(c):>6s}  "
                   f"(expected {c['expected'] if c['expected'] is not None else '–'}): "
@@ -994,6 +1009,8 @@ def main():
     p.add_argument("--build", default=os.environ.get("RIGIDFMU_BUILD", str(ROOT / "build")))
     p.add_argument("--no-build", action="store_true", help="do not (re)build the core")
     p.add_argument("--verbose", "-v", action="store_true", help="print every run")
+    p.add_argument("--peers", default=str(ROOT / "docs" / "peers.json"),
+                   help="the peers' measurements (scripts/peers.sh) to draw beside ours, if the file exists")
     args = p.parse_args()
     if args.scene and args.tolerance is None:
         p.error("--scene needs --tolerance")

@@ -13,4 +13,10 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
   "$cmake_bin" -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 fi
 "$cmake_bin" --build "$build" -j"$(nproc)" --target rigidfmu-describe rigidfmu_fmus >/dev/null
+# The full report measures the peers (MuJoCo, its own venv) first, in the same run, so
+# that their points sit on our diagrams; quick and --scene modes leave them out.
+case " $* " in
+  *" --quick "*|*" --scene "*) ;;
+  *) RIGIDFMU_SKIP_SETUP=1 "$root/scripts/peers.sh" --out "$root/docs/peers.json" || echo "peers: not measured" >&2 ;;
+esac
 exec "$root/.venv/bin/python" "$root/scripts/report_accuracy.py" --build "$build" --no-build "$@"

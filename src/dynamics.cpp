@@ -43,9 +43,12 @@ void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
 
 void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body,
                             const BodyInput& input, const BodyState& y, BodyAux& aux,
-                            BodyDerivative& dy) {
+                            BodyDerivative& dy, bool withSurfaces) {
   computeAuxiliaries(body, y, aux);
-  accumulateForces(model, body, input, y, aux);
+  if (withSurfaces)
+    accumulateForces(model, body, input, y, aux);
+  else
+    accumulateAppliedForces(model, body, input, y, aux);
   dy.dX = aux.V;
   dy.dq = spin(aux.omega, y.q);
   dy.dP = aux.F;

@@ -15,9 +15,11 @@ void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
                              const BodyInput& input, const BodyState& y, BodyAux& aux);
 
 // dY/dt of one body (bodies exert no forces on each other outside contacts).
+// withSurfaces false leaves out the surfaces' support and friction, whose switches
+// (touching or not, sticking or sliding) a finite-difference Jacobian must not see.
 void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body,
                             const BodyInput& input, const BodyState& y, BodyAux& aux,
-                            BodyDerivative& dy);
+                            BodyDerivative& dy, bool withSurfaces = true);
 
 // For every body: auxiliaries of Y, the accumulated force and torque, and
 // dY/dt = (V, 1/2 omega q, F, T). aux is filled as a by-product.

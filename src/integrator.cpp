@@ -277,7 +277,9 @@ int dopri5Adaptive(const WorldModel& m, WorldData& d, double h, std::vector<Body
 // y1 = y + 3/2 h k1 + 1/2 h k2, gamma = 1 + 1/sqrt(2): second order for any J, L-stable.
 // J is each body's 13 x 13 Jacobian of dY/dt by finite differences (bodies exert no
 // forces on each other outside contacts), so stiff drag, angular drag and buoyancy's
-// restoring force are taken implicitly.
+// restoring force are taken implicitly. The surfaces' support and friction are left
+// out of J (their switches would spoil a difference quotient); ROS2 keeps its order
+// for any J, so they are simply explicit.
 using Vec13 = Eigen::Matrix<double, 13, 1>;
 using Mat13 = Eigen::Matrix<double, 13, 13>;
 
@@ -302,9 +304,10 @@ Vec13 pack(const BodyDerivative& d) {
   return v;
 }
 
-Vec13 bodyRate(const WorldModel& m, size_t i, const BodyInput& in, const Vec13& y, BodyAux& aux) {
+Vec13 bodyRate(const WorldModel& m, size_t i, const BodyInput& in, const Vec13& y, BodyAux& aux,
+               bool withSurfaces = true) {
   BodyDerivative d;
-  evaluateBodyDerivative(m, m.bodies[i], in, unpack(y), aux, d);
+  evaluateBodyDerivative(m, m.bodies[i], in, unpack(y), aux, d, withSurfaces);
   return pack(d);
 }
 
@@ -320,7 +323,8 @@ void rosenbrockStep(const WorldModel& m, WorldData& d, double h, std::vector<Bod
       Vec13 yp = y, ym = y;
       yp[j] += delta;
       ym[j] -= delta;
-      J.col(j) = (bodyRate(m, i, in, yp, d.aux[i]) - bodyRate(m, i, in, ym, d.aux[i])) / (2.0 * delta);
+      J.col(j) = (bodyRate(m, i, in, yp, d.aux[i], false) - bodyRate(m, i, in, ym, d.aux[i], false)) /
+                 (2.0 * delta);
     }
     const Eigen::PartialPivLU<Mat13> W(Mat13::Identity() - gamma * h * J);
     const Vec13 k1 = W.solve(f0);

@@ -151,23 +151,29 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
                  [&](Instance& i) { return i.noVariablesOfType("fmi2SetString", vr, nvr); });
 }
 
-fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate*) {
-  return unsupported(c, "fmi2GetFMUstate", "canGetAndSetFMUstate is false");
+// FMU states may be taken and restored in every state of the instance: a master rolls
+// back from a failed step as well as from a completed one.
+fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate* state) {
+  return guarded(c, "fmi2GetFMUstate", kAnyState, [&](Instance& i) { return i.getState(state); });
 }
-fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate) {
-  return unsupported(c, "fmi2SetFMUstate", "canGetAndSetFMUstate is false");
+fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate state) {
+  return guarded(c, "fmi2SetFMUstate", kAnyState, [&](Instance& i) { return i.setState(state); });
 }
-fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate*) {
-  return unsupported(c, "fmi2FreeFMUstate", "canGetAndSetFMUstate is false");
+fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate* state) {
+  return guarded(c, "fmi2FreeFMUstate", kAnyState, [&](Instance& i) { return i.freeState(state); });
 }
-fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate, size_t*) {
-  return unsupported(c, "fmi2SerializedFMUstateSize", "canSerializeFMUstate is false");
+fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate state, size_t* size) {
+  return guarded(c, "fmi2SerializedFMUstateSize", kAnyState,
+                 [&](Instance& i) { return i.serializedStateSize(state, size); });
 }
-fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate, fmi2Byte[], size_t) {
-  return unsupported(c, "fmi2SerializeFMUstate", "canSerializeFMUstate is false");
+fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate state, fmi2Byte bytes[], size_t size) {
+  return guarded(c, "fmi2SerializeFMUstate", kAnyState,
+                 [&](Instance& i) { return i.serializeState(state, bytes, size); });
 }
-fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte[], size_t, fmi2FMUstate*) {
-  return unsupported(c, "fmi2DeSerializeFMUstate", "canSerializeFMUstate is false");
+fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte bytes[], size_t size,
+                                   fmi2FMUstate* state) {
+  return guarded(c, "fmi2DeSerializeFMUstate", kAnyState,
+                 [&](Instance& i) { return i.deserializeState(bytes, size, state); });
 }
 fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference[], size_t,
                                         const fmi2ValueReference[], size_t, const fmi2Real[],

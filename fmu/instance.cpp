@@ -74,7 +74,9 @@ Instance* Instance::create(fmi2String instanceName, fmi2Type type, fmi2String gu
   if (!guid || expected != guid)
     return refuse("GUID " + std::string(guid ? guid : "(null)") +
                   " does not match this FMU's scene, whose GUID is " + expected);
-  return new Instance(name, *functions, loggingOn == fmi2True, std::move(scene));
+  Instance* instance = new Instance(name, *functions, loggingOn == fmi2True, std::move(scene));
+  instance->guid_ = expected;
+  return instance;
 }
 
 Instance::Instance(std::string name, const fmi2CallbackFunctions& functions, bool loggingOn,
@@ -316,6 +318,100 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
     }
   }
   time_ = lastSuccessfulTime_ = tc + h;
+  return fmi2OK;
+}
+
+Snapshot* Instance::ownState(fmi2FMUstate state, const char* function) const {
+  Snapshot* s = static_cast<Snapshot*>(state);
+  if (!s || !states_.count(s)) {
+    error(std::string(function) + ": not an FMU state of this instance (NULL, freed, or another's)");
+    return nullptr;
+  }
+  return s;
+}
+
+fmi2Status Instance::getState(fmi2FMUstate* state) {
+  if (!state) return error("fmi2GetFMUstate: FMUstate is NULL");
+  Snapshot* s = static_cast<Snapshot*>(*state);
+  if (s && !states_.count(s)) return error("fmi2GetFMUstate: *FMUstate is not a state of this instance");
+  if (!s) {
+    owned_.push_back(std::make_unique<Snapshot>());
+    s = owned_.back().get();
+    states_.insert(s);
+  }
+  *s = Snapshot{model_, data_, state_, startTime_, time_, lastSuccessfulTime_, wantsToTerminate_};
+  *state = s;
+  return fmi2OK;
+}
+
+fmi2Status Instance::setState(fmi2FMUstate state) {
+  const Snapshot* s = ownState(state, "fmi2SetFMUstate");
+  if (!s) return fmi2Error;
+  model_ = s->model;
+  data_ = s->data;
+  state_ = s->machineState;
+  startTime_ = s->startTime;
+  time_ = s->time;
+  lastSuccessfulTime_ = s->lastSuccessfulTime;
+  wantsToTerminate_ = s->wantsToTerminate;
+  substepNote_.clear();
+  return fmi2OK;
+}
+
+fmi2Status Instance::freeState(fmi2FMUstate* state) {
+  if (!state) return error("fmi2FreeFMUstate: FMUstate is NULL");
+  if (!*state) return fmi2OK;  // nothing to free
+  Snapshot* s = ownState(*state, "fmi2FreeFMUstate");
+  if (!s) return fmi2Error;
+  states_.erase(s);
+  for (auto it = owned_.begin(); it != owned_.end(); ++it)
+    if (it->get() == s) {
+      owned_.erase(it);
+      break;
+    }
+  *state = nullptr;
+  return fmi2OK;
+}
+
+fmi2Status Instance::serializedStateSize(fmi2FMUstate state, size_t* size) {
+  const Snapshot* s = ownState(state, "fmi2SerializedFMUstateSize");
+  if (!s) return fmi2Error;
+  if (!size) return error("fmi2SerializedFMUstateSize: size is NULL");
+  *size = serialize(*s, guid_).size();
+  return fmi2OK;
+}
+
+fmi2Status Instance::serializeState(fmi2FMUstate state, fmi2Byte bytes[], size_t size) {
+  const Snapshot* s = ownState(state, "fmi2SerializeFMUstate");
+  if (!s) return fmi2Error;
+  const std::vector<char> b = serialize(*s, guid_);
+  if (!bytes || size < b.size())
+    return error("fmi2SerializeFMUstate: the buffer holds " + std::to_string(size) + " bytes, the state needs " +
+                 std::to_string(b.size()) + " (fmi2SerializedFMUstateSize)");
+  std::copy(b.begin(), b.end(), bytes);
+  return fmi2OK;
+}
+
+fmi2Status Instance::deserializeState(const fmi2Byte bytes[], size_t size, fmi2FMUstate* state) {
+  if (!state) return error("fmi2DeSerializeFMUstate: FMUstate is NULL");
+  // A fresh instance of the same scene is the frame the bytes are read into.
+  Snapshot s{scene_.model, rigid::initialData(scene_.model), kInstantiated, 0.0, 0.0, 0.0, false};
+  const std::string why = deserialize(bytes, size, guid_, s);
+  if (!why.empty()) return error("fmi2DeSerializeFMUstate: " + why);
+  const unsigned known = kInstantiated | kInitializationMode | kStepComplete | kStepFailed | kTerminated | kError;
+  if (__builtin_popcount(s.machineState) != 1 || !(s.machineState & known))
+    return error("fmi2DeSerializeFMUstate: the state holds an unknown machine state " +
+                 std::to_string(s.machineState));
+  Snapshot* target = static_cast<Snapshot*>(*state);
+  if (target && !states_.count(target))
+    return error("fmi2DeSerializeFMUstate: *FMUstate is not a state of this instance");
+  if (!target) {
+    owned_.push_back(std::make_unique<Snapshot>());
+    target = owned_.back().get();
+    states_.insert(target);
+  }
+  *target = std::move(s);
+  *state = target;
   return fmi2OK;
 }
 

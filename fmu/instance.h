@@ -3,12 +3,14 @@
 // in threads.
 #pragma once
 
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "fmi2Functions.h"
 #include "scene.h"
+#include "snapshot.h"
 #include "variables.h"
 
 namespace rigidfmu {
@@ -52,6 +54,14 @@ class Instance {
 
   fmi2Status doStep(fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize);
 
+  // FMU states: snapshots owned by this instance (freed with it).
+  fmi2Status getState(fmi2FMUstate* state);
+  fmi2Status setState(fmi2FMUstate state);
+  fmi2Status freeState(fmi2FMUstate* state);
+  fmi2Status serializedStateSize(fmi2FMUstate state, size_t* size);
+  fmi2Status serializeState(fmi2FMUstate state, fmi2Byte bytes[], size_t size);
+  fmi2Status deserializeState(const fmi2Byte bytes[], size_t size, fmi2FMUstate* state);
+
   fmi2Status getRealStatus(fmi2StatusKind kind, fmi2Real* value);
   fmi2Status getBooleanStatus(fmi2StatusKind kind, fmi2Boolean* value);
 
@@ -94,6 +104,11 @@ class Instance {
   double lastSuccessfulTime_ = 0.0;
   bool wantsToTerminate_ = false;  // fmi2Terminated status
   std::string substepNote_;        // the sub-stepping last reported ("cause:count")
+  std::string guid_;               // of the scene: checked when a state is deserialised
+  // FMU states handed out, so that a pointer that is not one of them is refused.
+  std::set<Snapshot*> states_;
+  std::vector<std::unique_ptr<Snapshot>> owned_;
+  Snapshot* ownState(fmi2FMUstate state, const char* function) const;
 };
 
 }  // namespace rigidfmu

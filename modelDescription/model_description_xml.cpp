@@ -96,7 +96,7 @@ std::string modelDescriptionXml(const rigid::Scene& scene) {
     << " canHandleVariableCommunicationStepSize=\"true\" canInterpolateInputs=\"false\""
     << " maxOutputDerivativeOrder=\"0\" canRunAsynchronuously=\"false\""
     << " canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\""
-    << " canGetAndSetFMUstate=\"false\" canSerializeFMUstate=\"false\""
+    << " canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\""
     << " providesDirectionalDerivative=\"false\" needsExecutionTool=\"false\"/>\n";
 
   std::set<std::string> used;

@@ -60,7 +60,7 @@ def test_contract_variable_names(fmu_of):
     assert causality["a.position[1]"] == "output" and causality["b.angularMomentum[2]"] == "output"
     assert causality["a.mass"] == "parameter" and causality["gravity[2]"] == "parameter"
     assert {v.name: v.variability for v in md.modelVariables}["gravity[1]"] == "tunable"
-    assert md.coSimulation.canGetAndSetFMUstate is False
+    assert md.coSimulation.canGetAndSetFMUstate is True and md.coSimulation.canSerializeFMUstate is True
 
 
 def test_guid_derives_from_scene_content(fmu_of):

@@ -1,0 +1,132 @@
+#include "snapshot.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace rigidfmu {
+
+namespace {
+
+constexpr char kMagic[8] = {'R', 'I', 'G', 'I', 'D', 'F', 'M', 'U'};
+
+class Writer {
+ public:
+  template <class T>
+  void put(const T& v) {
+    const char* p = reinterpret_cast<const char*>(&v);
+    bytes.insert(bytes.end(), p, p + sizeof(T));
+  }
+  void put(const rigid::Vec3& v) {
+    for (int i = 0; i < 3; ++i) put(v[i]);
+  }
+  void put(const rigid::Quat& q) {
+    put(q.w()), put(q.x()), put(q.y()), put(q.z());
+  }
+  std::vector<char> bytes;
+};
+
+class Reader {
+ public:
+  Reader(const char* p, size_t n) : p_(p), n_(n) {}
+  template <class T>
+  bool get(T& v) {
+    if (n_ - at_ < sizeof(T)) return false;
+    std::memcpy(&v, p_ + at_, sizeof(T));
+    at_ += sizeof(T);
+    return true;
+  }
+  bool get(rigid::Vec3& v) { return get(v[0]) && get(v[1]) && get(v[2]); }
+  bool get(rigid::Quat& q) { return get(q.w()) && get(q.x()) && get(q.y()) && get(q.z()); }
+  bool done() const { return at_ == n_; }
+
+ private:
+  const char* p_;
+  size_t n_, at_ = 0;
+};
+
+}  // namespace
+
+std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
+  Writer w;
+  for (char c : kMagic) w.put(c);
+  w.put(kSnapshotVersion);
+  w.put(static_cast<uint32_t>(guid.size()));
+  for (char c : guid) w.put(c);
+  const uint32_t n = static_cast<uint32_t>(s.model.bodies.size());
+  w.put(n);
+  w.put(static_cast<uint32_t>(s.machineState));
+  w.put(static_cast<uint8_t>(s.wantsToTerminate));
+  w.put(s.startTime), w.put(s.time), w.put(s.lastSuccessfulTime);
+  w.put(s.model.gravity);
+  w.put(static_cast<int32_t>(s.model.method));
+  w.put(s.model.maxStep), w.put(s.model.tolerance);
+  for (const rigid::BodyConstants& b : s.model.bodies) {
+    w.put(b.mass), w.put(b.restitution);
+    w.put(b.start.position), w.put(b.start.orientation), w.put(b.start.velocity),
+        w.put(b.start.angularVelocity);
+  }
+  for (uint32_t i = 0; i < n; ++i) {
+    const rigid::BodyState& y = s.data.Y[i];
+    w.put(y.X), w.put(y.q), w.put(y.P), w.put(y.L);
+    w.put(s.data.input[i].force), w.put(s.data.input[i].torque);
+    w.put(static_cast<int32_t>(s.data.contacts[i]));
+  }
+  w.put(static_cast<int64_t>(s.data.steps));
+  w.put(s.data.errorEstimate);
+  w.put(s.data.scratch.adaptiveStep);
+  return w.bytes;
+}
+
+std::string deserialize(const char* bytes, size_t size, const std::string& guid, Snapshot& s) {
+  if (!bytes) return "the serialized state is NULL";
+  Reader r(bytes, size);
+  char magic[8];
+  for (char& c : magic)
+    if (!r.get(c)) return "the serialized state is too short (" + std::to_string(size) + " bytes)";
+  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) return "the bytes are not a rigidfmu state";
+  uint32_t version = 0, guidLength = 0, n = 0, machine = 0;
+  if (!r.get(version) || version != kSnapshotVersion)
+    return "state format version " + std::to_string(version) + ", this FMU reads version " +
+           std::to_string(kSnapshotVersion);
+  if (!r.get(guidLength) || guidLength > 256) return "the serialized state is corrupt (GUID length)";
+  std::string theirs(guidLength, '\0');
+  for (char& c : theirs)
+    if (!r.get(c)) return "the serialized state is too short";
+  if (theirs != guid) return "the state is of another scene (GUID " + theirs + ", this FMU " + guid + ")";
+  if (!r.get(n) || n != s.model.bodies.size()) return "the state holds another number of bodies";
+  uint8_t terminate = 0;
+  int32_t method = 0;
+  Snapshot out = s;
+  bool ok = r.get(machine) && r.get(terminate) && r.get(out.startTime) && r.get(out.time) &&
+            r.get(out.lastSuccessfulTime) && r.get(out.model.gravity) && r.get(method) &&
+            r.get(out.model.maxStep) && r.get(out.model.tolerance);
+  for (rigid::BodyConstants& b : out.model.bodies) {
+    double mass = 0.0;
+    ok = ok && r.get(mass) && r.get(b.restitution) && r.get(b.start.position) &&
+         r.get(b.start.orientation) && r.get(b.start.velocity) && r.get(b.start.angularVelocity);
+    if (ok && !(mass > 0.0 && std::isfinite(mass))) return "the state holds a mass that is not > 0";
+    if (ok) rigid::setMass(out.model.bodies[&b - out.model.bodies.data()], mass);
+  }
+  for (uint32_t i = 0; i < n && ok; ++i) {
+    rigid::BodyState& y = out.data.Y[i];
+    int32_t contacts = 0;
+    ok = r.get(y.X) && r.get(y.q) && r.get(y.P) && r.get(y.L) && r.get(out.data.input[i].force) &&
+         r.get(out.data.input[i].torque) && r.get(contacts);
+    out.data.contacts[i] = contacts;
+  }
+  int64_t steps = 0;
+  ok = ok && r.get(steps) && r.get(out.data.errorEstimate) && r.get(out.data.scratch.adaptiveStep);
+  if (!ok || !r.done())
+    return "the serialized state has " + std::to_string(size) + " bytes, not the size of a state of this scene";
+  const auto m = rigid::methodFromValue(method);
+  if (!m) return "the state holds an unknown solver.method " + std::to_string(method);
+  out.model.method = *m;
+  out.data.steps = steps;
+  out.machineState = machine;
+  out.wantsToTerminate = terminate != 0;
+  rigid::refreshAuxiliaries(out.model, out.data);
+  s = std::move(out);
+  return "";
+}
+
+}  // namespace rigidfmu

@@ -1,0 +1,32 @@
+// FMU states (fmi2GetFMUstate and friends): everything that shapes an instance's
+// future, copied, and its versioned, pointer-free serialisation.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "world.h"
+
+namespace rigidfmu {
+
+struct Snapshot {
+  rigid::WorldModel model;  // parameters and start values as set
+  rigid::WorldData data;    // state Y, inputs, counters, integrator history
+  unsigned machineState = 0;
+  double startTime = 0.0, time = 0.0, lastSuccessfulTime = 0.0;
+  bool wantsToTerminate = false;
+};
+
+// Bumped whenever the layout below changes: an old serialisation is then refused.
+inline constexpr uint32_t kSnapshotVersion = 1;
+
+// The bytes of a snapshot of a scene with this GUID.
+std::vector<char> serialize(const Snapshot& s, const std::string& guid);
+
+// Reads bytes back into `s` (whose model and data must be those of the same scene, as
+// freshly instantiated); returns "" or why the bytes are refused (size, version, GUID,
+// body count, a value out of range).
+std::string deserialize(const char* bytes, size_t size, const std::string& guid, Snapshot& s);
+
+}  // namespace rigidfmu

@@ -1,0 +1,127 @@
+"""FMU states: a run restored from a snapshot continues bitwise as the uninterrupted
+run, also when the snapshot was serialised in another process; bad bytes are refused
+with a message."""
+import ctypes
+import json
+import pathlib
+import subprocess
+import sys
+
+import pytest
+from fmpy.fmi2 import fmi2FMUstate
+
+from harness import Slave, status_of
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+PLAYGROUND = json.loads((ROOT / "scripts" / "scenes" / "default.json").read_text())
+H = 0.05
+
+
+@pytest.fixture(scope="module")
+def fmu(fmu_of):
+    return fmu_of(PLAYGROUND)  # contacts, friction, media, collisions: the richest state
+
+
+def outputs(s):
+    ints = [v.valueReference for v in s.md.modelVariables if v.type in ("Integer", "Enumeration")]
+    return s.all_reals() + s.slave.getInteger(ints)
+
+
+def drive(s, t0, t1, force=None):
+    n = round((t1 - t0) / H)
+    for k in range(n):
+        if force is not None:
+            s.set_values({"slider.force[2]": force * (k % 3)})  # inputs change along the way
+        s.slave.doStep(t0 + k * H, H)
+    return outputs(s)
+
+
+def test_restored_state_continues_bitwise(fmu):
+    s = Slave(fmu)
+    try:
+        s.initialize()
+        drive(s, 0.0, 1.0, force=2.0)
+        state = s.slave.getFMUstate()
+        straight = drive(s, 1.0, 2.0, force=3.0)
+        s.slave.setFMUstate(state)
+        assert s.get("time") == pytest.approx(1.0, abs=1e-12)
+        assert drive(s, 1.0, 2.0, force=3.0) == straight
+        s.slave.freeFMUstate(state)
+    finally:
+        s.close()
+
+
+CHILD = r"""
+import json, sys
+sys.path.insert(0, {tests!r})
+from harness import Slave
+from test_fmu_state import drive
+s = Slave({fmu!r})
+s.initialize()
+drive(s, 0.0, 1.0, force=2.0)
+state = s.slave.getFMUstate()
+blob = bytes(s.slave.serializeFMUstate(state))
+out = drive(s, 1.0, 2.0, force=3.0)
+open({blob!r}, "wb").write(blob)
+json.dump(out, open({out!r}, "w"))
+"""
+
+
+def test_state_serialised_in_another_process_continues_bitwise(fmu, tmp_path):
+    blob, out = tmp_path / "state.bin", tmp_path / "out.json"
+    code = CHILD.format(tests=str(pathlib.Path(__file__).parent), fmu=str(fmu), blob=str(blob), out=str(out))
+    subprocess.run([sys.executable, "-c", code], check=True, cwd=tmp_path)
+    s = Slave(fmu)
+    try:
+        state = s.slave.deSerializeFMUstate(blob.read_bytes())
+        s.slave.setFMUstate(state)
+        assert drive(s, 1.0, 2.0, force=3.0) == json.loads(out.read_text())
+    finally:
+        s.close()
+
+
+def test_bad_serialisations_are_refused_with_a_message(fmu, fmu_of):
+    import scenes
+    s = Slave(fmu)
+    other = Slave(fmu_of(scenes.projectile()))
+    try:
+        s.initialize()
+        blob = bytearray(s.slave.serializeFMUstate(s.slave.getFMUstate()))
+
+        def load(b):
+            return status_of(lambda: s.slave.deSerializeFMUstate(bytes(b)))
+
+        assert load(blob[:-3]) == "Error"
+        assert "not the size of a state of this scene" in s.log.messages[-1][2]
+        bad = bytearray(blob)
+        bad[8] ^= 0x7F  # the format version
+        assert load(bad) == "Error" and "version" in s.log.messages[-1][2]
+        assert load(b"not a state at all") == "Error"
+        other.initialize()
+        foreign = bytes(other.slave.serializeFMUstate(other.slave.getFMUstate()))
+        assert load(foreign) == "Error" and "another scene" in s.log.messages[-1][2]
+        # and a pointer that is not one of its states
+        bogus = fmi2FMUstate(ctypes.c_void_p(12345).value)
+        assert status_of(lambda: s.slave.setFMUstate(bogus)) == "Error"
+        assert "not an FMU state of this instance" in s.log.messages[-1][2]
+        # the instance is still usable
+        s.slave.doStep(0.0, H)
+    finally:
+        s.close()
+        other.close()
+
+
+def test_state_holds_inputs_parameters_and_machine_state(fmu):
+    s = Slave(fmu)
+    try:
+        s.initialize()
+        s.set_values({"gravity[3]": -5.0, "ball.force[1]": 7.0})
+        state = s.slave.getFMUstate()
+        s.set_values({"gravity[3]": -1.0, "ball.force[1]": 0.0})
+        s.slave.doStep(0.0, H)
+        s.slave.terminate()
+        s.slave.setFMUstate(state)  # back to stepping, at t = 0
+        assert s.get("gravity[3]", "ball.force[1]", "time") == [-5.0, 7.0, 0.0]
+        s.slave.doStep(0.0, H)  # allowed again
+    finally:
+        s.close()

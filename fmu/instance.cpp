@@ -302,9 +302,13 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
           r.body >= 0 ? "the state of body " + model_.bodies[r.body].name + " is not finite"
           : !r.cause.empty()
               ? std::string("method ") + rigid::methodName(model_.method) +
-                    " is outside its stability region (" + r.cause + "): the internal step of " +
-                    num(to - from) + " s would need more than 1e6 sub-steps; a solver.step of " +
-                    num(r.stableStep) + " s, or the method rosenbrock or dopri5, would work"
+                    " is outside its stability region (" + r.cause + ")" +
+                    (r.stableStep > 0.0
+                         ? ": the internal step of " + num(to - from) +
+                               " s would need more than 1e6 sub-steps; a solver.step of " +
+                               num(r.stableStep) + " s, or the method rosenbrock or dopri5, would work"
+                         : ": it grows on every oscillation at any step; the methods rk4, "
+                           "symplecticEuler, splitting or rosenbrock would work")
               : "the adaptive method could not meet solver.tolerance = " + num(model_.tolerance) +
                     " (its step fell below 1e-14 of the step; raise the tolerance)";
       const std::string hint =

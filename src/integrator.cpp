@@ -275,6 +275,7 @@ int dopri5Adaptive(const WorldModel& m, WorldData& d, double h, std::vector<Body
 // ---- Rosenbrock ROS2 (Verwer, Spee, Blom & Hundsdorfer 1999) ------------------------------
 // (I - gamma h J) k1 = f(y),  (I - gamma h J) k2 = f(y + h k1) - 2 k1,
 // y1 = y + 3/2 h k1 + 1/2 h k2, gamma = 1 + 1/sqrt(2): second order for any J, L-stable.
+// q then turns by the free rotation (DLM) with the step's mean L.
 // J is each body's 13 x 13 Jacobian of dY/dt by finite differences (bodies exert no
 // forces on each other outside contacts), so stiff drag, angular drag and buoyancy's
 // restoring force are taken implicitly. The surfaces' support and friction are left
@@ -326,10 +327,16 @@ void rosenbrockStep(const WorldModel& m, WorldData& d, double h, std::vector<Bod
       J.col(j) = (bodyRate(m, i, in, yp, d.aux[i], false) - bodyRate(m, i, in, ym, d.aux[i], false)) /
                  (2.0 * delta);
     }
+    // q's rows are left out: q is turned by the free rotation below, not by the stages.
+    J.middleRows<4>(3).setZero();
     const Eigen::PartialPivLU<Mat13> W(Mat13::Identity() - gamma * h * J);
     const Vec13 k1 = W.solve(f0);
     const Vec13 k2 = W.solve(bodyRate(m, i, in, y + h * k1, d.aux[i]) - 2.0 * k1);
     next[i] = unpack(y + 1.5 * h * k1 + 0.5 * h * k2);
+    // q turns by the free rotation with the step's mean L (Dullweber-Leimkuhler-
+    // McLachlan, as in the splitting method): second order, and a free rotation keeps
+    // its energy bounded, which polynomial stages on q do not.
+    next[i].q = freeRotation(m.bodies[i], d.Y[i].q, 0.5 * (d.Y[i].L + next[i].L), h);
   }
 }
 

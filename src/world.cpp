@@ -232,6 +232,12 @@ void stabilitySubsteps(const WorldModel& model, const WorldData& data, double h,
   const StabilityLimits limits = stabilityLimits(model.method);
   auto consider = [&](double rate, double limit, const char* cause) {
     if (!(rate > 0.0) || !std::isfinite(limit)) return;
+    if (limit == 0.0) {  // no step is stable: refuse
+      r.substeps = std::numeric_limits<long>::max();
+      r.cause = cause;
+      r.stableStep = 0.0;
+      return;
+    }
     const double stable = limit / rate;
     if (h <= stable) return;
     const double n = std::ceil(h / stable - 1e-9);  // a step at the limit within rounding is fine

@@ -59,11 +59,11 @@ def orientation_error(fmu, method, h, T, omega0):
 
 
 @pytest.mark.parametrize("method,steps,order,tol", [
-    (2, [0.04, 0.02, 0.01, 0.005], 4.0, 0.4),    # rk4
+    (2, [0.02, 0.01, 0.005, 0.0025], 4.0, 0.4),  # rk4 (h |omega| within its spin limit 0.1)
     (1, [4e-3, 2e-3, 1e-3, 5e-4], 1.0, 0.2),     # euler
     (3, [4e-3, 2e-3, 1e-3, 5e-4], 1.0, 0.2),     # symplecticEuler
     (4, [0.02, 0.01, 0.005, 0.0025], 2.0, 0.2),  # splitting
-    (5, [0.04, 0.02, 0.01, 0.005], 4.0, 0.4),    # lieRk4
+    (5, [0.02, 0.01, 0.005, 0.0025], 4.0, 0.4),  # lieRk4
     (6, [0.08, 0.04, 0.02, 0.01], 5.0, 0.5),     # dopri5 with fixed steps
 ], ids=["rk4", "euler", "symplecticEuler", "splitting", "lieRk4", "dopri5"])
 def test_convergence_order(fmu_of, method, steps, order, tol):

@@ -180,13 +180,15 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
                                         fmi2Real[]) {
   return unsupported(c, "fmi2GetDirectionalDerivative", "providesDirectionalDerivative is false");
 }
-fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference[], size_t,
-                                       const fmi2Integer[], const fmi2Real[]) {
-  return unsupported(c, "fmi2SetRealInputDerivatives", "canInterpolateInputs is false");
+fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                                       const fmi2Integer order[], const fmi2Real value[]) {
+  return guarded(c, "fmi2SetRealInputDerivatives", kCanSet,
+                 [&](Instance& i) { return i.setInputDerivatives(vr, nvr, order, value); });
 }
-fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReference[], size_t,
-                                        const fmi2Integer[], fmi2Real[]) {
-  return unsupported(c, "fmi2GetRealOutputDerivatives", "maxOutputDerivativeOrder is 0");
+fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                                        const fmi2Integer order[], fmi2Real value[]) {
+  return guarded(c, "fmi2GetRealOutputDerivatives", fmu::kStepComplete | fmu::kStepFailed | fmu::kTerminated,
+                 [&](Instance& i) { return i.getOutputDerivatives(vr, nvr, order, value); });
 }
 
 fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "dynamics.h"
 #include "guid.h"
 #include "modules.h"
 #include "model_description_xml.h"
@@ -289,9 +290,26 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
   // rounding of zero is not a step of its own. Times are tc + k*step, never summed.
   const long n = std::max(1L, static_cast<long>(std::ceil(ratio - 1e-9)));
   data_.steps = 0;
+  // Inputs with derivatives vary over the step: each internal step holds them at its
+  // midpoint, which gives a ramp's impulse exactly. Afterwards the inputs are again
+  // the values the master set, and the derivatives are spent.
+  const std::vector<rigid::BodyInput> setInputs = data_.input;
+  struct Restore {
+    rigid::WorldData& d;
+    const std::vector<rigid::BodyInput>& inputs;
+    ~Restore() {
+      d.input = inputs;
+      std::fill(d.inputRate.begin(), d.inputRate.end(), rigid::BodyInput{});
+    }
+  } restore{data_, setInputs};
   for (long k = 0; k < n; ++k) {
     const double from = static_cast<double>(k) * model_.maxStep;
     const double to = k + 1 == n ? h : static_cast<double>(k + 1) * model_.maxStep;
+    const double mid = 0.5 * (from + to);
+    for (size_t b = 0; b < data_.input.size(); ++b) {
+      data_.input[b].force = setInputs[b].force + mid * data_.inputRate[b].force;
+      data_.input[b].torque = setInputs[b].torque + mid * data_.inputRate[b].torque;
+    }
     const rigid::StepResult r = rigid::step(model_, data_, to - from);
     if (r.ok) noteSubsteps(r, to - from);
     if (!r.ok) {
@@ -416,6 +434,58 @@ fmi2Status Instance::deserializeState(const fmi2Byte bytes[], size_t size, fmi2F
   }
   *target = std::move(s);
   *state = target;
+  return fmi2OK;
+}
+
+fmi2Status Instance::setInputDerivatives(const fmi2ValueReference vr[], size_t n,
+                                         const fmi2Integer order[], const fmi2Real value[]) {
+  if (n && (!vr || !order || !value)) return error("fmi2SetRealInputDerivatives: an array is NULL");
+  for (size_t i = 0; i < n; ++i) {
+    const Variable* v = lookup("fmi2SetRealInputDerivatives", vr[i], false);
+    if (!v) return fmi2Error;
+    if (v->causality != Causality::Input)
+      return error("fmi2SetRealInputDerivatives: " + v->name + " is not an input");
+    if (order[i] != 1)
+      return error("fmi2SetRealInputDerivatives: " + v->name + ": only first-order derivatives "
+                   "(order 1) are interpolated, got order " + std::to_string(order[i]));
+    if (!std::isfinite(value[i]))
+      return error("fmi2SetRealInputDerivatives: " + v->name + ": must be finite, got " + num(value[i]));
+    rigid::BodyInput& rate = data_.inputRate[v->body];
+    (v->quantity == Quantity::Force ? rate.force : rate.torque)[v->component] = value[i];
+  }
+  return fmi2OK;
+}
+
+fmi2Status Instance::getOutputDerivatives(const fmi2ValueReference vr[], size_t n,
+                                          const fmi2Integer order[], fmi2Real value[]) {
+  if (n && (!vr || !order || !value)) return error("fmi2GetRealOutputDerivatives: an array is NULL");
+  // dY/dt at the current state and inputs: the same force stage as the integrators.
+  std::vector<rigid::BodyAux> aux(data_.Y.size());
+  std::vector<rigid::BodyDerivative> dY(data_.Y.size());
+  rigid::evaluateDerivative(model_, data_.input, data_.Y, aux, dY);
+  for (size_t i = 0; i < n; ++i) {
+    const Variable* v = lookup("fmi2GetRealOutputDerivatives", vr[i], false);
+    if (!v) return fmi2Error;
+    if (v->causality != Causality::Output)
+      return error("fmi2GetRealOutputDerivatives: " + v->name + " is not an output");
+    if (order[i] != 1)
+      return error("fmi2GetRealOutputDerivatives: " + v->name + ": MaxOutputDerivativeOrder is 1, got order " +
+                   std::to_string(order[i]));
+    const int b = v->body, c = v->component;
+    const rigid::BodyAux& a = aux[b];
+    switch (v->quantity) {
+      case Quantity::Position: value[i] = dY[b].dX[c]; break;
+      case Quantity::Orientation: value[i] = dY[b].dq[(c + 3) % 4]; break;  // (w,x,y,z) from (x,y,z,w)
+      case Quantity::Velocity: value[i] = dY[b].dP[c] / model_.bodies[b].mass; break;
+      case Quantity::AngularVelocity:
+        // d(I^-1 L)/dt = I^-1 (T - omega x L) for a rigid body
+        value[i] = (a.Iinv * (a.T - a.omega.cross(data_.Y[b].L)))[c];
+        break;
+      case Quantity::LinearMomentum: value[i] = dY[b].dP[c]; break;
+      case Quantity::AngularMomentum: value[i] = dY[b].dL[c]; break;
+      default: value[i] = 0.0;  // solver.errorEstimate: piecewise constant
+    }
+  }
   return fmi2OK;
 }
 

@@ -54,6 +54,13 @@ class Instance {
 
   fmi2Status doStep(fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize);
 
+  // First-order input derivatives (canInterpolateInputs) and output derivatives
+  // (MaxOutputDerivativeOrder = 1).
+  fmi2Status setInputDerivatives(const fmi2ValueReference vr[], size_t n, const fmi2Integer order[],
+                                 const fmi2Real value[]);
+  fmi2Status getOutputDerivatives(const fmi2ValueReference vr[], size_t n, const fmi2Integer order[],
+                                  fmi2Real value[]);
+
   // FMU states: snapshots owned by this instance (freed with it).
   fmi2Status getState(fmi2FMUstate* state);
   fmi2Status setState(fmi2FMUstate state);

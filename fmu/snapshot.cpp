@@ -69,6 +69,7 @@ std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
     const rigid::BodyState& y = s.data.Y[i];
     w.put(y.X), w.put(y.q), w.put(y.P), w.put(y.L);
     w.put(s.data.input[i].force), w.put(s.data.input[i].torque);
+    w.put(s.data.inputRate[i].force), w.put(s.data.inputRate[i].torque);
     w.put(static_cast<int32_t>(s.data.contacts[i]));
   }
   w.put(static_cast<int64_t>(s.data.steps));
@@ -111,7 +112,8 @@ std::string deserialize(const char* bytes, size_t size, const std::string& guid,
     rigid::BodyState& y = out.data.Y[i];
     int32_t contacts = 0;
     ok = r.get(y.X) && r.get(y.q) && r.get(y.P) && r.get(y.L) && r.get(out.data.input[i].force) &&
-         r.get(out.data.input[i].torque) && r.get(contacts);
+         r.get(out.data.input[i].torque) && r.get(out.data.inputRate[i].force) &&
+         r.get(out.data.inputRate[i].torque) && r.get(contacts);
     out.data.contacts[i] = contacts;
   }
   int64_t steps = 0;

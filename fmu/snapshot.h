@@ -19,7 +19,7 @@ struct Snapshot {
 };
 
 // Bumped whenever the layout below changes: an old serialisation is then refused.
-inline constexpr uint32_t kSnapshotVersion = 1;
+inline constexpr uint32_t kSnapshotVersion = 2;  // 2: input derivatives
 
 // The bytes of a snapshot of a scene with this GUID.
 std::vector<char> serialize(const Snapshot& s, const std::string& guid);

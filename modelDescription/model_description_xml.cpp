@@ -93,8 +93,8 @@ std::string modelDescriptionXml(const rigid::Scene& scene) {
     << "  generationTool=\"rigidfmu\" variableNamingConvention=\"structured\""
     << " numberOfEventIndicators=\"0\">\n";
   x << "  <CoSimulation modelIdentifier=\"" << escape(model.name) << "\""
-    << " canHandleVariableCommunicationStepSize=\"true\" canInterpolateInputs=\"false\""
-    << " maxOutputDerivativeOrder=\"0\" canRunAsynchronuously=\"false\""
+    << " canHandleVariableCommunicationStepSize=\"true\" canInterpolateInputs=\"true\""
+    << " maxOutputDerivativeOrder=\"1\" canRunAsynchronuously=\"false\""
     << " canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\""
     << " canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\""
     << " providesDirectionalDerivative=\"false\" needsExecutionTool=\"false\"/>\n";

@@ -29,6 +29,7 @@ WorldData initialData(const WorldModel& model) {
   d.Y.reserve(n);
   for (const BodyConstants& body : model.bodies) d.Y.push_back(initialState(body));
   d.input.assign(n, BodyInput{});
+  d.inputRate.assign(n, BodyInput{});
   d.aux.resize(n);
   d.contacts.assign(n, 0);
 #if RIGID_WITH_COLLISIONS

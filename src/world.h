@@ -42,6 +42,9 @@ struct Scratch {
 struct WorldData {
   std::vector<BodyState> Y;    // state vectors
   std::vector<BodyInput> input;  // external loads (FMU inputs)
+  // Their rates of change over the current communication step (N/s, N m/s): the FMU's
+  // input derivatives; zero unless a master sets them.
+  std::vector<BodyInput> inputRate;
   std::vector<BodyAux> aux;    // auxiliaries of Y, valid after initialise() and step()
   std::vector<int> contacts;   // contact points of each body at the end of the last step
   long steps = 0;              // internal steps taken since the counter was last cleared

@@ -1,0 +1,95 @@
+"""Smooth coupling: first-order input derivatives (canInterpolateInputs) and output
+derivatives (MaxOutputDerivativeOrder = 1)."""
+import math
+
+import numpy as np
+import pytest
+from fmpy import read_model_description
+
+import scenes
+from harness import Slave, status_of
+
+M, K, C = 1.0, 400.0, 2.0  # kg, N/m, N s/m: omega = 20 rad/s
+
+
+def oscillator(fmu, h, T, with_derivatives):
+    """An fmpy master closes a spring-damper through the force input,
+    F = -k x - c v at each communication point; with derivatives it also passes
+    dF/dt = -k v - c a, with a from the FMU's output derivative of the velocity."""
+    s = Slave(fmu)
+    try:
+        s.initialize({"ball.position[1]": 0.1})
+        vr_f, vr_v = s.vr(["ball.force[1]"]), s.vr(["ball.velocity[1]"])
+        t = 0.0
+        for _ in range(round(T / h)):
+            x, v = s.get("ball.position[1]", "ball.velocity[1]")
+            s.set_values({"ball.force[1]": -K * x - C * v})
+            if with_derivatives:
+                a = s.slave.getRealOutputDerivatives(vr_v, [1])[0]
+                s.slave.setRealInputDerivatives(vr_f, [1], [-K * v - C * a])
+            s.slave.doStep(t, h)
+            t += h
+        return s.get("ball.position[1]")
+    finally:
+        s.close()
+
+
+def exact(T, x0=0.1):
+    w0 = math.sqrt(K / M)
+    zeta = C / (2 * math.sqrt(K * M))
+    wd = w0 * math.sqrt(1 - zeta**2)
+    return x0 * math.exp(-zeta * w0 * T) * (math.cos(wd * T) + zeta * w0 / wd * math.sin(wd * T))
+
+
+@pytest.fixture(scope="module")
+def fmu(fmu_of):
+    return fmu_of(scenes.scene("Coupled", [scenes.body("ball", mass=M)], gravity=(0, 0, 0)))
+
+
+def test_capabilities_are_declared(fmu):
+    cs = read_model_description(str(fmu)).coSimulation
+    assert cs.canInterpolateInputs is True and cs.maxOutputDerivativeOrder == 1
+
+
+def test_stiff_coupling_is_more_accurate_with_derivatives(fmu):
+    """Same communication step (h omega = 0.4): the interpolated inputs cut the error."""
+    T, h = 2.0, 0.02
+    without = abs(oscillator(fmu, h, T, False) - exact(T))
+    with_d = abs(oscillator(fmu, h, T, True) - exact(T))
+    assert with_d < without / 3, (with_d, without)
+
+
+def test_output_derivatives_are_the_state_derivatives(fmu):
+    s = Slave(fmu)
+    try:
+        s.initialize({"ball.velocity[1]": 2.0, "ball.angularVelocity[3]": 3.0})
+        s.set_values({"ball.force[2]": 4.0})
+        s.slave.doStep(0.0, 0.1)
+        names = ["ball.position[1]", "ball.velocity[2]", "ball.linearMomentum[2]", "ball.orientation[1]"]
+        d = s.slave.getRealOutputDerivatives(s.vr(names), [1] * 4)
+        q = s.get("ball.orientation[1]", "ball.orientation[4]")
+        assert d[0] == pytest.approx(2.0, abs=1e-12)       # dx/dt = v
+        assert d[1] == pytest.approx(4.0 / M, abs=1e-12)   # dv/dt = F/m
+        assert d[2] == pytest.approx(4.0, abs=1e-12)       # dP/dt = F
+        assert d[3] == pytest.approx(-0.5 * 3.0 * q[1], abs=1e-12)  # dw/dt of q = -1/2 omega_z q_z
+        assert status_of(lambda: s.slave.getRealOutputDerivatives(s.vr(names[:1]), [2])) == "Error"
+        assert status_of(lambda: s.slave.setRealInputDerivatives(s.vr(["ball.force[1]"]), [2], [1.0])) == "Error"
+        assert status_of(lambda: s.slave.setRealInputDerivatives(s.vr(["ball.mass"]), [1], [1.0])) == "Error"
+    finally:
+        s.close()
+
+
+def test_input_ramp_gives_the_exact_impulse(fmu):
+    """F(t) = 3 t N over one 1 s step, split into internal steps held at their midpoints:
+    v(1) = 1.5 m/s exactly, and the derivative is spent after the step."""
+    s = Slave(fmu)
+    try:
+        s.initialize()
+        s.slave.setRealInputDerivatives(s.vr(["ball.force[1]"]), [1], [3.0])
+        s.slave.doStep(0.0, 1.0)
+        assert s.get("ball.velocity[1]") == pytest.approx(1.5, abs=1e-12)
+        assert s.get("ball.force[1]") == 0.0
+        s.slave.doStep(1.0, 1.0)
+        assert s.get("ball.velocity[1]") == pytest.approx(1.5, abs=1e-12)
+    finally:
+        s.close()

@@ -15,6 +15,7 @@ import time
 import mujoco
 import numpy as np
 from scipy.integrate import solve_ivp
+from quaternion import quat_mul, rotation_angle as angle  # noqa: E402
 
 I = np.array([1.0, 2.0, 3.0])
 W0 = np.array([0.01, 5.0, 0.01])
@@ -33,13 +34,6 @@ MJCF = """
 """
 
 
-def quat_mul(a, b):
-    aw, ax, ay, az = a
-    bw, bx, by, bz = b
-    return np.array([aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
-                     aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw])
-
-
 def reference():
     def rhs(t, y):
         w, q = y[:3], y[3:]
@@ -47,11 +41,6 @@ def reference():
     sol = solve_ivp(rhs, (0, T), np.r_[W0, 1, 0, 0, 0], method="DOP853", rtol=1e-12, atol=1e-14)
     q = sol.y[3:, -1]
     return q / np.linalg.norm(q)
-
-
-def angle(q, r):
-    rel = quat_mul(r * np.array([1, -1, -1, -1]), q)
-    return 2 * np.arcsin(min(1.0, np.linalg.norm(rel[1:])))
 
 
 def run(integrator, dt):

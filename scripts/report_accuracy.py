@@ -39,6 +39,7 @@ import time
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from quaternion import quat_axis_angle, quat_mul, rotation_angle  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 CMAKE = "/usr/bin/cmake"
@@ -59,30 +60,6 @@ SPIN_STEPS = {1: 8, 2: 4}  # the spins (omega up to 5 rad/s) need 8x finer steps
 
 # ----------------------------------------------------------------------------------
 # quaternions and independent references
-
-def quat_mul(a, b):
-    aw, ax, ay, az = a
-    bw, bx, by, bz = b
-    return np.array([aw * bw - ax * bx - ay * by - az * bz,
-                     aw * bx + ax * bw + ay * bz - az * by,
-                     aw * by - ax * bz + ay * bw + az * bx,
-                     aw * bz + ax * by - ay * bx + az * bw])
-
-
-def quat_axis_angle(axis, angle):
-    axis = np.asarray(axis, dtype=float)
-    axis = axis / np.linalg.norm(axis)
-    return np.r_[math.cos(angle / 2), math.sin(angle / 2) * axis]
-
-
-def rotation_angle(q1, q2):
-    """Angle (rad) of the rotation between two unit quaternions: 2 asin |vec(q2* q1)|
-    (accurate near 0, where 2 acos |q1.q2| is not)."""
-    q1 = np.asarray(q1, dtype=float) / np.linalg.norm(q1)
-    q2 = np.asarray(q2, dtype=float) / np.linalg.norm(q2)
-    rel = quat_mul(q2 * np.array([1, -1, -1, -1]), q1)
-    return 2 * math.asin(min(1.0, float(np.linalg.norm(rel[1:]))))
-
 
 def torque_free_reference(inertia, omega0, T):
     """Euler's equations in the body frame and q' = 1/2 q (0, omega_body), identity

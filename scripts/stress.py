@@ -50,6 +50,7 @@ from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from quaternion import quat_axis_angle, quat_mul, rotation_angle  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 CMAKE = "/usr/bin/cmake"
@@ -73,31 +74,6 @@ REPEATS = 3  # full mode: run time = median of 3 runs (quick mode: 1 run)
 
 # ----------------------------------------------------------------------------------
 # quaternions and references
-
-def quat_mul(a, b):
-    aw, ax, ay, az = a
-    bw, bx, by, bz = b
-    return np.array([aw * bw - ax * bx - ay * by - az * bz,
-                     aw * bx + ax * bw + ay * bz - az * by,
-                     aw * by - ax * bz + ay * bw + az * bx,
-                     aw * bz + ax * by - ay * bx + az * bw])
-
-
-def quat_axis_angle(axis, angle):
-    axis = np.asarray(axis, dtype=float)
-    n = np.linalg.norm(axis)
-    if n == 0.0:
-        return np.array([1.0, 0, 0, 0])
-    return np.r_[math.cos(angle / 2), math.sin(angle / 2) * axis / n]
-
-
-def rotation_angle(q1, q2):
-    """Angle (rad) of the rotation between two unit quaternions, 2 asin |vec(q2* q1)|."""
-    q1 = np.asarray(q1, dtype=float) / np.linalg.norm(q1)
-    q2 = np.asarray(q2, dtype=float) / np.linalg.norm(q2)
-    rel = quat_mul(q2 * np.array([1, -1, -1, -1]), q1)
-    return 2 * math.asin(min(1.0, float(np.linalg.norm(rel[1:]))))
-
 
 def symmetric_top(inertia, omega0, t):
     """Torque-free body with two equal principal moments (any axis a the odd one),

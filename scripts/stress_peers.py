@@ -16,6 +16,7 @@ import time
 
 import mujoco
 import numpy as np
+from quaternion import quat_mul, rotation_angle as angle  # noqa: E402
 
 I = np.array([2.0, 2.0, 3.0])
 H = 1e-2
@@ -39,13 +40,6 @@ MJCF = """
 """
 
 
-def quat_mul(a, b):
-    aw, ax, ay, az = a
-    bw, bx, by, bz = b
-    return np.array([aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
-                     aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw])
-
-
 def axis_angle(axis, angle):
     axis = np.asarray(axis, dtype=float)
     return np.r_[math.cos(angle / 2), math.sin(angle / 2) * axis / np.linalg.norm(axis)]
@@ -55,11 +49,6 @@ def symmetric_top(w, t):
     L = I * w
     Omega = (I[2] - I[0]) / I[0] * w[2]
     return quat_mul(axis_angle(L, np.linalg.norm(L) * t / I[0]), axis_angle([0, 0, 1], -Omega * t))
-
-
-def angle(q, r):
-    rel = quat_mul(r * np.array([1, -1, -1, -1]), q / np.linalg.norm(q))
-    return 2 * math.asin(min(1.0, float(np.linalg.norm(rel[1:]))))
 
 
 def run(integrator, hw):

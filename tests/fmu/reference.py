@@ -2,14 +2,7 @@
 import numpy as np
 from scipy.integrate import solve_ivp
 
-
-def quat_mul(a, b):
-    aw, ax, ay, az = a
-    bw, bx, by, bz = b
-    return np.array([aw * bw - ax * bx - ay * by - az * bz,
-                     aw * bx + ax * bw + ay * bz - az * by,
-                     aw * by - ax * bz + ay * bw + az * bx,
-                     aw * bz + ax * by - ay * bx + az * bw])
+from quaternion import quat_mul  # scripts/quaternion.py (tests/conftest.py puts scripts/ on the path)
 
 
 def torque_free(inertia, omega_body0, q0, times):

@@ -317,7 +317,12 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
       state_ = kStepFailed;
       wantsToTerminate_ = true;
       const std::string cause =
-          r.body >= 0 ? "the state of body " + model_.bodies[r.body].name + " is not finite"
+          r.body >= 0 ? "the state of body " + model_.bodies[r.body].name +
+                            " is not finite or beyond 1e12 m"
+          : r.cause == "fast body"
+              ? "a body moves so fast that the internal step of " + num(to - from) +
+                    " s would need more than 1e4 collision sub-steps; a solver.step of " +
+                    num(r.stableStep) + " s would work"
           : !r.cause.empty()
               ? std::string("method ") + rigid::methodName(model_.method) +
                     " is outside its stability region (" + r.cause + ")" +

@@ -92,9 +92,13 @@ void normaliseOrientations(std::vector<BodyState>& Y) {
 #endif
 }
 
+// A state the physics can still answer: finite, and positions within 1e12 m of the
+// origin (collision detection's geometry fails far beyond, and no scene is that big).
+constexpr double kMaxDistance = 1e12;  // m
+
 int firstNonFinite(const std::vector<BodyState>& Y) {
   for (size_t i = 0; i < Y.size(); ++i)
-    if (!isFinite(Y[i])) return static_cast<int>(i);
+    if (!isFinite(Y[i]) || Y[i].X.cwiseAbs().maxCoeff() > kMaxDistance) return static_cast<int>(i);
   return -1;
 }
 
@@ -211,6 +215,8 @@ StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
     const double rest = h - done;
     const int steps = advance(model, data, rest, next);
     if (steps == 0) return failed(-1);
+    // Out of range: refused before contact detection ever sees it.
+    if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);
     double taken = rest;
     if (impacts < kMaxImpactsPerStep && anyImpact(model, data, h, next) &&
         !anyImpact(model, data, h, data.Y))
@@ -239,7 +245,8 @@ void stabilitySubsteps(const WorldModel& model, const WorldData& data, double h,
       r.stableStep = 0.0;
       return;
     }
-    const double stable = limit / rate;
+    // (a rate so large that the stable step underflows still gets a step > 0)
+    const double stable = std::max(limit / rate, std::numeric_limits<double>::denorm_min());
     if (h <= stable) return;
     const double n = std::ceil(h / stable - 1e-9);  // a step at the limit within rounding is fine
     if (n > static_cast<double>(r.substeps)) {
@@ -264,7 +271,9 @@ void stabilitySubsteps(const WorldModel& model, const WorldData& data, double h,
 
 StepResult step(const WorldModel& model, WorldData& data, double h) {
   // More than this many sub-steps in one step is refused: the step should be smaller.
+  // (Fast bodies cost a collision detection per sub-step, hence their lower cap.)
   constexpr long kMaxSubsteps = 1000000;
+  constexpr long kMaxFastSubsteps = 10000;
   StepResult plan;
   stabilitySubsteps(model, data, h, plan);
   const long fast = collisionSubsteps(model, data, h);
@@ -273,7 +282,7 @@ StepResult step(const WorldModel& model, WorldData& data, double h) {
     plan.cause = "fast body";
     plan.stableStep = h / fast;
   }
-  if (plan.substeps > kMaxSubsteps) {
+  if (plan.substeps > (plan.cause == "fast body" ? kMaxFastSubsteps : kMaxSubsteps)) {
     plan.ok = false;
     return plan;
   }

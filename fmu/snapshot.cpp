@@ -106,7 +106,7 @@ std::string deserialize(const char* bytes, size_t size, const std::string& guid,
     ok = ok && r.get(mass) && r.get(b.restitution) && r.get(b.start.position) &&
          r.get(b.start.orientation) && r.get(b.start.velocity) && r.get(b.start.angularVelocity);
     if (ok && !(mass > 0.0 && std::isfinite(mass))) return "the state holds a mass that is not > 0";
-    if (ok) rigid::setMass(out.model.bodies[&b - out.model.bodies.data()], mass);
+    if (ok) rigid::setMass(b, mass);  // Ibody follows, as when the parameter is set
   }
   for (uint32_t i = 0; i < n && ok; ++i) {
     rigid::BodyState& y = out.data.Y[i];

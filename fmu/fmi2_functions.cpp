@@ -175,10 +175,12 @@ fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte bytes[], size
   return guarded(c, "fmi2DeSerializeFMUstate", kAnyState,
                  [&](Instance& i) { return i.deserializeState(bytes, size, state); });
 }
-fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference[], size_t,
-                                        const fmi2ValueReference[], size_t, const fmi2Real[],
-                                        fmi2Real[]) {
-  return unsupported(c, "fmi2GetDirectionalDerivative", "providesDirectionalDerivative is false");
+fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference unknown[], size_t nUnknown,
+                                        const fmi2ValueReference known[], size_t nKnown,
+                                        const fmi2Real dvKnown[], fmi2Real dvUnknown[]) {
+  return guarded(c, "fmi2GetDirectionalDerivative", fmu::kStepComplete, [&](Instance& i) {
+    return i.getDirectionalDerivative(unknown, nUnknown, known, nKnown, dvKnown, dvUnknown);
+  });
 }
 fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                                        const fmi2Integer order[], const fmi2Real value[]) {

@@ -286,9 +286,49 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
   if (ratio > 1e12)
     return error("fmi2DoStep: communicationStepSize " + num(h) + " s needs more than 1e12 steps of solver.step = " +
                  num(model_.maxStep) + " s");
+  const Interval run = advance(h, true);
+  lastStepSize_ = h;
+  if (!run.result.ok) {
+    const rigid::StepResult& r = run.result;
+    const double from = run.from, to = run.to;
+    time_ = lastSuccessfulTime_ = tc + from;
+    state_ = kStepFailed;
+    wantsToTerminate_ = true;
+    const std::string cause =
+        r.body >= 0 ? "the state of body " + model_.bodies[r.body].name +
+                          " is not finite or beyond 1e12 m"
+        : r.cause == "fast body"
+            ? "a body moves so fast that the internal step of " + num(to - from) +
+                  " s would need more than 1e4 collision sub-steps; a solver.step of " +
+                  num(r.stableStep) + " s would work"
+        : !r.cause.empty()
+            ? std::string("method ") + rigid::methodName(model_.method) +
+                  " is outside its stability region (" + r.cause + ")" +
+                  (r.stableStep > 0.0
+                       ? ": the internal step of " + num(to - from) +
+                             " s would need more than 1e6 sub-steps; a solver.step of " +
+                             num(r.stableStep) + " s, or the method rosenbrock or dopri5, would work"
+                       : ": it grows on every oscillation at any step; the methods rk4, "
+                         "symplecticEuler, splitting or rosenbrock would work")
+            : "the adaptive method could not meet solver.tolerance = " + num(model_.tolerance) +
+                  " (its step fell below 1e-14 of the step; raise the tolerance)";
+    const std::string hint =
+        r.body >= 0 ? " (inputs or parameters out of range, e.g. " + model_.bodies[r.body].name + ".force)"
+                    : "";
+    log(fmi2Discard, "logStatusDiscard",
+        "fmi2DoStep: " + cause + " after the internal step from t = " + num(tc + from) + " to " +
+            num(tc + to) + " s" + hint + "; the FMU stays at t = " + num(time_) +
+            " s and must be reset or terminated");
+    return fmi2Discard;
+  }
+  time_ = lastSuccessfulTime_ = tc + h;
+  return fmi2OK;
+}
+
+Instance::Interval Instance::advance(double h, bool report) {
   // Internal steps of solver.step, the last one shortened; a remainder within
   // rounding of zero is not a step of its own. Times are tc + k*step, never summed.
-  const long n = std::max(1L, static_cast<long>(std::ceil(ratio - 1e-9)));
+  const long n = std::max(1L, static_cast<long>(std::ceil(h / model_.maxStep - 1e-9)));
   data_.steps = 0;
   // Inputs with derivatives vary over the step: each internal step holds them at its
   // midpoint, which gives a ramp's impulse exactly. Afterwards the inputs are again
@@ -311,40 +351,65 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
       data_.input[b].torque = setInputs[b].torque + mid * data_.inputRate[b].torque;
     }
     const rigid::StepResult r = rigid::step(model_, data_, to - from);
-    if (r.ok) noteSubsteps(r, to - from);
-    if (!r.ok) {
-      time_ = lastSuccessfulTime_ = tc + from;
-      state_ = kStepFailed;
-      wantsToTerminate_ = true;
-      const std::string cause =
-          r.body >= 0 ? "the state of body " + model_.bodies[r.body].name +
-                            " is not finite or beyond 1e12 m"
-          : r.cause == "fast body"
-              ? "a body moves so fast that the internal step of " + num(to - from) +
-                    " s would need more than 1e4 collision sub-steps; a solver.step of " +
-                    num(r.stableStep) + " s would work"
-          : !r.cause.empty()
-              ? std::string("method ") + rigid::methodName(model_.method) +
-                    " is outside its stability region (" + r.cause + ")" +
-                    (r.stableStep > 0.0
-                         ? ": the internal step of " + num(to - from) +
-                               " s would need more than 1e6 sub-steps; a solver.step of " +
-                               num(r.stableStep) + " s, or the method rosenbrock or dopri5, would work"
-                         : ": it grows on every oscillation at any step; the methods rk4, "
-                           "symplecticEuler, splitting or rosenbrock would work")
-              : "the adaptive method could not meet solver.tolerance = " + num(model_.tolerance) +
-                    " (its step fell below 1e-14 of the step; raise the tolerance)";
-      const std::string hint =
-          r.body >= 0 ? " (inputs or parameters out of range, e.g. " + model_.bodies[r.body].name + ".force)"
-                      : "";
-      log(fmi2Discard, "logStatusDiscard",
-          "fmi2DoStep: " + cause + " after the internal step from t = " + num(tc + from) + " to " +
-              num(tc + to) + " s" + hint + "; the FMU stays at t = " + num(time_) +
-              " s and must be reset or terminated");
+    if (!r.ok) return {r, from, to};
+    if (report) noteSubsteps(r, to - from);
+  }
+  return {};
+}
+
+fmi2Status Instance::getDirectionalDerivative(const fmi2ValueReference unknown[], size_t nUnknown,
+                                              const fmi2ValueReference known[], size_t nKnown,
+                                              const fmi2Real dvKnown[], fmi2Real dvUnknown[]) {
+  const char* fn = "fmi2GetDirectionalDerivative";
+  if ((nUnknown && (!unknown || !dvUnknown)) || (nKnown && (!known || !dvKnown)))
+    return error(std::string(fn) + ": an array is NULL");
+  std::vector<const Variable*> ins, outs;
+  for (size_t i = 0; i < nKnown; ++i) {
+    const Variable* v = lookup(fn, known[i], false);
+    if (!v) return fmi2Error;
+    if (v->causality != Causality::Input)
+      return error(std::string(fn) + ": " + v->name + " is not an input (knowns must be inputs)");
+    if (!std::isfinite(dvKnown[i])) return error(std::string(fn) + ": the seed of " + v->name + " must be finite");
+    ins.push_back(v);
+  }
+  for (size_t i = 0; i < nUnknown; ++i) {
+    const Variable* v = lookup(fn, unknown[i], false);
+    if (!v) return fmi2Error;
+    if (v->causality != Causality::Output)
+      return error(std::string(fn) + ": " + v->name + " is not an output (unknowns must be outputs)");
+    outs.push_back(v);
+  }
+  // d(outputs after the next communication step)/d(inputs) . seed, by central
+  // differences through the FMU's own step: the step is as long as the last one
+  // (solver.step before the first). Outputs at a communication point do not depend
+  // on the inputs of that instant (no feed-through), so this is what couples.
+  const double h = lastStepSize_ > 0.0 ? lastStepSize_ : model_.maxStep;
+  double seedNorm = 0.0;
+  for (size_t i = 0; i < nKnown; ++i) seedNorm = std::max(seedNorm, std::abs(dvKnown[i]));
+  if (seedNorm == 0.0) {
+    std::fill(dvUnknown, dvUnknown + nUnknown, 0.0);
+    return fmi2OK;
+  }
+  const rigid::WorldData saved = data_;
+  double scale = 1.0;
+  for (const Variable* v : ins) scale = std::max(scale, std::abs(read(*v)));
+  const double eps = 1e-6 * scale / seedNorm;
+  std::vector<double> plus(nUnknown), minus(nUnknown);
+  for (double sign : {1.0, -1.0}) {
+    data_ = saved;
+    for (size_t i = 0; i < nKnown; ++i)
+      writeValue(*ins[i], read(*ins[i]) + sign * eps * dvKnown[i], model_, data_, Phase::Running);
+    const Interval run = advance(h, false);
+    if (!run.result.ok) {
+      data_ = saved;
+      log(fmi2Discard, "logStatusDiscard", std::string(fn) + ": the perturbed step failed; no derivative");
       return fmi2Discard;
     }
+    std::vector<double>& out = sign > 0 ? plus : minus;
+    for (size_t i = 0; i < nUnknown; ++i) out[i] = read(*outs[i]);
   }
-  time_ = lastSuccessfulTime_ = tc + h;
+  data_ = saved;
+  for (size_t i = 0; i < nUnknown; ++i) dvUnknown[i] = (plus[i] - minus[i]) / (2.0 * eps);
   return fmi2OK;
 }
 

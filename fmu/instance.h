@@ -54,6 +54,11 @@ class Instance {
 
   fmi2Status doStep(fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize);
 
+  // Directional derivatives of outputs after the next step with respect to inputs.
+  fmi2Status getDirectionalDerivative(const fmi2ValueReference unknown[], size_t nUnknown,
+                                      const fmi2ValueReference known[], size_t nKnown,
+                                      const fmi2Real dvKnown[], fmi2Real dvUnknown[]);
+
   // First-order input derivatives (canInterpolateInputs) and output derivatives
   // (MaxOutputDerivativeOrder = 1).
   fmi2Status setInputDerivatives(const fmi2ValueReference vr[], size_t n, const fmi2Integer order[],
@@ -92,6 +97,13 @@ class Instance {
   fmi2Status write(const Variable& v, double value);
   double read(const Variable& v) const;
   bool setupPhase() const { return state_ & (kInstantiated | kInitializationMode); }
+  // Integrates the world over the next h seconds in internal steps of solver.step,
+  // inputs ramped by their derivatives; reports sub-stepping in the log if asked.
+  struct Interval {
+    rigid::StepResult result;
+    double from = 0.0, to = 0.0;  // s, the internal step that failed, from the start
+  };
+  Interval advance(double h, bool report);
   // Logs when the sub-stepping of the internal steps starts, changes or stops.
   void noteSubsteps(const rigid::StepResult& r, double h);
 
@@ -112,6 +124,7 @@ class Instance {
   bool wantsToTerminate_ = false;  // fmi2Terminated status
   std::string substepNote_;        // the sub-stepping last reported ("cause:count")
   std::string guid_;               // of the scene: checked when a state is deserialised
+  double lastStepSize_ = 0.0;      // s, the last communication step (directional derivatives)
   // FMU states handed out, so that a pointer that is not one of them is refused.
   std::set<Snapshot*> states_;
   std::vector<std::unique_ptr<Snapshot>> owned_;

@@ -97,7 +97,7 @@ std::string modelDescriptionXml(const rigid::Scene& scene) {
     << " maxOutputDerivativeOrder=\"1\" canRunAsynchronuously=\"false\""
     << " canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\""
     << " canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\""
-    << " providesDirectionalDerivative=\"false\" needsExecutionTool=\"false\"/>\n";
+    << " providesDirectionalDerivative=\"true\" needsExecutionTool=\"false\"/>\n";
 
   std::set<std::string> used;
   for (const Variable& v : vars)

@@ -93,3 +93,55 @@ def test_input_ramp_gives_the_exact_impulse(fmu):
         assert s.get("ball.velocity[1]") == pytest.approx(1.5, abs=1e-12)
     finally:
         s.close()
+
+
+def test_directional_derivatives_over_a_step_match_closed_form(fmu):
+    """Outputs after a step of h (the last one's length) against inputs held over it:
+    dx/dF = h^2 / 2m, dv/dF = h / m, no cross-talk between axes."""
+    s = Slave(fmu)
+    try:
+        s.initialize({"ball.velocity[1]": 1.0})
+        h = 0.1
+        s.slave.doStep(0.0, h)
+        outs = s.vr(["ball.position[1]", "ball.velocity[1]", "ball.position[2]", "ball.linearMomentum[1]"])
+        d = s.slave.getDirectionalDerivative(outs, s.vr(["ball.force[1]"]), [1.0])
+        assert d[0] == pytest.approx(h * h / (2 * M), rel=1e-6)
+        assert d[1] == pytest.approx(h / M, rel=1e-6)
+        assert abs(d[2]) < 1e-12
+        assert d[3] == pytest.approx(h, rel=1e-6)
+        # the instance did not move while it was asked
+        assert s.get("time") == pytest.approx(h, abs=1e-15)
+        assert s.get("ball.position[1]") == pytest.approx(h * 1.0, abs=1e-12)
+    finally:
+        s.close()
+
+
+def test_directional_derivative_matches_the_masters_finite_difference(fmu_of):
+    """On the Playground (contacts, friction, drag): the FMU's derivative of the slider's
+    position after a step with respect to its force, against a master's own central
+    difference through FMU states."""
+    import json
+    import pathlib
+    root = pathlib.Path(__file__).resolve().parents[2]
+    scene = json.loads((root / "scripts" / "scenes" / "default.json").read_text())
+    s = Slave(fmu_of(scene))
+    try:
+        s.initialize()
+        for k in range(10):
+            s.slave.doStep(k * 0.05, 0.05)
+        t = 0.5
+        out = s.vr(["slider.position[1]", "slider.velocity[1]"])
+        inp = s.vr(["slider.force[1]"])
+        d = s.slave.getDirectionalDerivative(out, inp, [1.0])
+        state = s.slave.getFMUstate()
+        eps, values = 1e-2, []
+        for sign in (1, -1):
+            s.slave.setFMUstate(state)
+            s.slave.setReal(inp, [sign * eps])
+            s.slave.doStep(t, 0.05)
+            values.append(s.slave.getReal(out))
+        fd = [(p - m) / (2 * eps) for p, m in zip(*values)]
+        assert d == pytest.approx(fd, rel=1e-3, abs=1e-9)
+        assert d[1] > 0.0  # pushing along +x speeds it up along +x
+    finally:
+        s.close()

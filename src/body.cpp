@@ -47,10 +47,6 @@ BodyState initialState(const BodyConstants& body) {
   return y;
 }
 
-double kineticEnergy(const BodyState& y, const BodyAux& aux) {
-  return 0.5 * (y.P.dot(aux.V) + y.L.dot(aux.omega));
-}
-
 bool isFinite(const BodyState& y) {
   return y.X.allFinite() && y.q.coeffs().allFinite() && y.P.allFinite() && y.L.allFinite();
 }

@@ -79,9 +79,6 @@ void computeAuxiliaries(const BodyConstants& body, const BodyState& y, BodyAux& 
 // Y of a body at rest in its start pose, with P = M V0 and L = I(0) omega0.
 BodyState initialState(const BodyConstants& body);
 
-// Kinetic energy 1/2 (P.V + L.omega), J.
-double kineticEnergy(const BodyState& y, const BodyAux& aux);
-
 bool isFinite(const BodyState& y);
 
 }  // namespace rigid

@@ -293,12 +293,4 @@ StepResult step(const WorldModel& model, WorldData& data, double h) {
   return plan;
 }
 
-double totalEnergy(const WorldModel& model, const WorldData& data) {
-  double e = 0.0;
-  for (size_t i = 0; i < data.Y.size(); ++i)
-    e += kineticEnergy(data.Y[i], data.aux[i]) -
-         model.bodies[i].mass * model.gravity.dot(data.Y[i].X);
-  return e;
-}
-
 }  // namespace rigid

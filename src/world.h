@@ -76,7 +76,5 @@ struct StepResult {
 // not taken: Y stays as it was and the result names the body.
 StepResult step(const WorldModel& model, WorldData& data, double h);
 
-// Total energy: kinetic plus potential in the gravity field, J.
-double totalEnergy(const WorldModel& model, const WorldData& data);
 
 }  // namespace rigid

@@ -14,11 +14,7 @@ out="$(realpath -m "$2")"
 
 [ -n "${RIGIDFMU_SKIP_SETUP:-}" ] || "$root/scripts/setup.sh"
 build="${RIGIDFMU_BUILD:-$root/build}"
-cmake_bin=/usr/bin/cmake
-if [ ! -f "$build/CMakeCache.txt" ]; then
-  "$cmake_bin" -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
-fi
-"$cmake_bin" --build "$build" -j"$(nproc)" --target rigidfmu-describe rigidfmu_fmus >/dev/null
+. "$root/scripts/ensure_build.sh"
 "$cmake_bin" -DSCENE="$scene" -DOUT="$out" \
   -DDESCRIBE="$build/rigidfmu-describe" -DLIBRARY_DIR="$build" \
   -P "$root/cmake/package_fmu.cmake"

@@ -8,11 +8,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 [ -n "${RIGIDFMU_SKIP_SETUP:-}" ] || "$root/scripts/setup.sh"
 build="${RIGIDFMU_BUILD:-$root/build}"
-cmake_bin=/usr/bin/cmake
-if [ ! -f "$build/CMakeCache.txt" ]; then
-  "$cmake_bin" -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
-fi
-"$cmake_bin" --build "$build" -j"$(nproc)" --target rigidfmu-describe rigidfmu_fmus >/dev/null
+. "$root/scripts/ensure_build.sh"
 # The full report measures the peers (MuJoCo, its own venv) first, in the same run, so
 # that their points sit on our diagrams; quick and --scene modes leave them out.
 case " $* " in

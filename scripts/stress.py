@@ -50,6 +50,7 @@ from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from heave import heave  # noqa: E402
 from quaternion import quat_axis_angle, quat_mul, rotation_angle  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
@@ -110,28 +111,8 @@ _HEAVE_CACHE = {}
 def heave_dop853(m, size, z0, T, times):
     key = (m, tuple(size), z0, T, len(times))
     if key not in _HEAVE_CACHE:
-        _HEAVE_CACHE[key] = _heave(m, size, z0, T, times)
+        _HEAVE_CACHE[key] = heave(m, size, z0, times)
     return _HEAVE_CACHE[key]
-
-
-def _heave(m, size, z0, T, times):
-    """1-DOF heave of an upright box in water whose surface is z = 0 (docs/media.md):
-    buoyancy rho g A d, drag f (mu beta + 1/2 rho C_d A |v|) v, C_d 1.05, Leith's beta."""
-    lx, ly, lz = size
-    A, Vb = lx * ly, lx * ly * lz
-    S = 2 * (lx * ly + ly * lz + lx * lz)
-    beta = 6 * math.pi * (math.sqrt(A / math.pi) / 3 + 2 * math.sqrt(S / (4 * math.pi)) / 3)
-
-    def rhs(t, y):
-        z, v = y
-        d = min(max(lz / 2 - z, 0.0), lz)
-        f = A * d / Vb
-        drag = -f * (MU_WATER * beta + 0.5 * RHO_WATER * 1.05 * A * abs(v)) * v
-        return [v, -G + (RHO_WATER * G * A * d + drag) / m]
-
-    sol = solve_ivp(rhs, (0.0, T), [z0, 0.0], method="DOP853", rtol=1e-12, atol=1e-15,
-                    t_eval=times)
-    return sol.y[0]
 
 
 # ----------------------------------------------------------------------------------

@@ -10,9 +10,5 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 [ -n "${RIGIDFMU_SKIP_SETUP:-}" ] || "$root/scripts/setup.sh"
 build="${RIGIDFMU_BUILD:-$root/build}"
-cmake_bin=/usr/bin/cmake
-if [ ! -f "$build/CMakeCache.txt" ]; then
-  "$cmake_bin" -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
-fi
-"$cmake_bin" --build "$build" -j"$(nproc)" --target rigidfmu-describe rigidfmu_fmus >/dev/null
+. "$root/scripts/ensure_build.sh"
 exec "$root/.venv/bin/python" "$root/scripts/stress.py" --build "$build" --no-build "$@"

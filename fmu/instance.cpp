@@ -295,7 +295,14 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
     state_ = kStepFailed;
     wantsToTerminate_ = true;
     const std::string cause =
-        r.body >= 0 ? "the state of body " + model_.bodies[r.body].name +
+        r.cause == rigid::kEnergyGain
+            ? "body " + model_.bodies[r.body].name + ", turning free of torques, has gained " +
+                  num(r.energyGain) + " of its rotational energy, beyond solver.energyGainLimit = " +
+                  num(model_.energyGainLimit) + ": method " + rigid::methodName(model_.method) +
+                  " adds energy to a free rotation (about (h |omega|)^2 a step); the methods "
+                  "splitting, symplecticEuler, rk4 or lieRk4 keep it, or a solver.step of " +
+                  num(r.stableStep) + " s would have kept it within half the limit so far;"
+        : r.body >= 0 ? "the state of body " + model_.bodies[r.body].name +
                           " is not finite or beyond 1e12 m"
         : r.cause == "fast body"
             ? "a body moves so fast that the internal step of " + num(to - from) +
@@ -313,7 +320,7 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
             : "the adaptive method could not meet solver.tolerance = " + num(model_.tolerance) +
                   " (its step fell below 1e-14 of the step; raise the tolerance)";
     const std::string hint =
-        r.body >= 0 ? " (inputs or parameters out of range, e.g. " + model_.bodies[r.body].name + ".force)"
+        r.body >= 0 && r.cause.empty() ? " (inputs or parameters out of range, e.g. " + model_.bodies[r.body].name + ".force)"
                     : "";
     log(fmi2Discard, "logStatusDiscard",
         "fmi2DoStep: " + cause + " after the internal step from t = " + num(tc + from) + " to " +
@@ -431,7 +438,7 @@ fmi2Status Instance::getState(fmi2FMUstate* state) {
     s = owned_.back().get();
     states_.insert(s);
   }
-  *s = Snapshot{model_, data_, state_, startTime_, time_, lastSuccessfulTime_, wantsToTerminate_};
+  *s = Snapshot{model_, data_, state_, startTime_, time_, lastSuccessfulTime_, wantsToTerminate_, lastStepSize_};
   *state = s;
   return fmi2OK;
 }
@@ -446,6 +453,7 @@ fmi2Status Instance::setState(fmi2FMUstate state) {
   time_ = s->time;
   lastSuccessfulTime_ = s->lastSuccessfulTime;
   wantsToTerminate_ = s->wantsToTerminate;
+  lastStepSize_ = s->lastStepSize;
   substepNote_.clear();
   return fmi2OK;
 }
@@ -487,7 +495,7 @@ fmi2Status Instance::serializeState(fmi2FMUstate state, fmi2Byte bytes[], size_t
 fmi2Status Instance::deserializeState(const fmi2Byte bytes[], size_t size, fmi2FMUstate* state) {
   if (!state) return error("fmi2DeSerializeFMUstate: FMUstate is NULL");
   // A fresh instance of the same scene is the frame the bytes are read into.
-  Snapshot s{scene_.model, rigid::initialData(scene_.model), kInstantiated, 0.0, 0.0, 0.0, false};
+  Snapshot s{scene_.model, rigid::initialData(scene_.model), kInstantiated, 0.0, 0.0, 0.0, false, 0.0};
   const std::string why = deserialize(bytes, size, guid_, s);
   if (!why.empty()) return error("fmi2DeSerializeFMUstate: " + why);
   const unsigned known = kInstantiated | kInitializationMode | kStepComplete | kStepFailed | kTerminated | kError;

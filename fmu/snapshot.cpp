@@ -56,10 +56,10 @@ std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
   w.put(n);
   w.put(static_cast<uint32_t>(s.machineState));
   w.put(static_cast<uint8_t>(s.wantsToTerminate));
-  w.put(s.startTime), w.put(s.time), w.put(s.lastSuccessfulTime);
+  w.put(s.startTime), w.put(s.time), w.put(s.lastSuccessfulTime), w.put(s.lastStepSize);
   w.put(s.model.gravity);
   w.put(static_cast<int32_t>(s.model.method));
-  w.put(s.model.maxStep), w.put(s.model.tolerance);
+  w.put(s.model.maxStep), w.put(s.model.tolerance), w.put(s.model.energyGainLimit);
   for (const rigid::BodyConstants& b : s.model.bodies) {
     w.put(b.mass), w.put(b.restitution);
     w.put(b.start.position), w.put(b.start.orientation), w.put(b.start.velocity),
@@ -71,6 +71,7 @@ std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
     w.put(s.data.input[i].force), w.put(s.data.input[i].torque);
     w.put(s.data.inputRate[i].force), w.put(s.data.inputRate[i].torque);
     w.put(static_cast<int32_t>(s.data.contacts[i]));
+    w.put(s.data.energyGain[i]);
   }
   w.put(static_cast<int64_t>(s.data.steps));
   w.put(s.data.errorEstimate);
@@ -99,8 +100,8 @@ std::string deserialize(const char* bytes, size_t size, const std::string& guid,
   int32_t method = 0;
   Snapshot out = s;
   bool ok = r.get(machine) && r.get(terminate) && r.get(out.startTime) && r.get(out.time) &&
-            r.get(out.lastSuccessfulTime) && r.get(out.model.gravity) && r.get(method) &&
-            r.get(out.model.maxStep) && r.get(out.model.tolerance);
+            r.get(out.lastSuccessfulTime) && r.get(out.lastStepSize) && r.get(out.model.gravity) && r.get(method) &&
+            r.get(out.model.maxStep) && r.get(out.model.tolerance) && r.get(out.model.energyGainLimit);
   for (rigid::BodyConstants& b : out.model.bodies) {
     double mass = 0.0;
     ok = ok && r.get(mass) && r.get(b.restitution) && r.get(b.start.position) &&
@@ -113,7 +114,7 @@ std::string deserialize(const char* bytes, size_t size, const std::string& guid,
     int32_t contacts = 0;
     ok = r.get(y.X) && r.get(y.q) && r.get(y.P) && r.get(y.L) && r.get(out.data.input[i].force) &&
          r.get(out.data.input[i].torque) && r.get(out.data.inputRate[i].force) &&
-         r.get(out.data.inputRate[i].torque) && r.get(contacts);
+         r.get(out.data.inputRate[i].torque) && r.get(contacts) && r.get(out.data.energyGain[i]);
     out.data.contacts[i] = contacts;
   }
   int64_t steps = 0;

@@ -16,10 +16,11 @@ struct Snapshot {
   unsigned machineState = 0;
   double startTime = 0.0, time = 0.0, lastSuccessfulTime = 0.0;
   bool wantsToTerminate = false;
+  double lastStepSize = 0.0;  // s, the last communication step (directional derivatives)
 };
 
 // Bumped whenever the layout below changes: an old serialisation is then refused.
-inline constexpr uint32_t kSnapshotVersion = 2;  // 2: input derivatives
+inline constexpr uint32_t kSnapshotVersion = 3;  // 2: input derivatives; 3: energy audit, last step
 
 // The bytes of a snapshot of a scene with this GUID.
 std::vector<char> serialize(const Snapshot& s, const std::string& guid);

@@ -96,6 +96,10 @@ std::vector<Variable> modelVariables(const Scene& scene) {
   add({0, "solver.tolerance", Quantity::SolverTolerance, -1, 0, Causality::Parameter,
        Variability::Fixed, Initial::Exact, BaseType::Real, "1",
        "local error tolerance of the adaptive method dopri5 (absolute and relative); 0: fixed steps"});
+  add({0, "solver.energyGainLimit", Quantity::SolverEnergyGainLimit, -1, 0, Causality::Parameter,
+       Variability::Tunable, Initial::Exact, BaseType::Real, "1",
+       "largest relative gain of a torque-free body's rotational energy over the run; a step "
+       "beyond it is refused (fmi2Discard); 0: unchecked"});
   add({0, "solver.steps", Quantity::SolverSteps, -1, 0, Causality::Output, Variability::Discrete,
        Initial::Calculated, BaseType::Integer, "",
        "internal steps taken in the last communication step (sub-steps included)"});
@@ -160,6 +164,7 @@ double readValue(const Variable& v, const WorldModel& model, const WorldData& da
     case Quantity::SolverMethod: return static_cast<double>(static_cast<int>(model.method));
     case Quantity::SolverStep: return model.maxStep;
     case Quantity::SolverTolerance: return model.tolerance;
+    case Quantity::SolverEnergyGainLimit: return model.energyGainLimit;
     case Quantity::SolverSteps: return setup ? 0.0 : static_cast<double>(data.steps);
     case Quantity::SolverErrorEstimate: return setup ? 0.0 : data.errorEstimate;
     case Quantity::Mass: return model.bodies[b].mass;
@@ -214,6 +219,10 @@ std::string writeValue(const Variable& v, double value, WorldModel& model, World
     case Quantity::SolverTolerance:
       if (value < 0.0) return v.name + ": must be >= 0, got " + fmt(value);
       model.tolerance = value;
+      return "";
+    case Quantity::SolverEnergyGainLimit:
+      if (value < 0.0) return v.name + ": must be >= 0 (0: unchecked), got " + fmt(value);
+      model.energyGainLimit = value;
       return "";
     case Quantity::SolverSteps:
     case Quantity::SolverErrorEstimate:

@@ -17,7 +17,7 @@ enum class Initial { None, Exact, Calculated };
 enum class BaseType { Real, Integer, Enumeration };
 
 enum class Quantity {
-  Time, Gravity, SolverMethod, SolverStep, SolverTolerance, SolverSteps, SolverErrorEstimate,
+  Time, Gravity, SolverMethod, SolverStep, SolverTolerance, SolverEnergyGainLimit, SolverSteps, SolverErrorEstimate,
   Mass, Restitution,
   Position, Orientation, Velocity, AngularVelocity, LinearMomentum, AngularMomentum,
   Force, Torque,

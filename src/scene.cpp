@@ -330,7 +330,7 @@ Scene parseScene(const std::string& text) {
   m.name = identifier(o, "name", "scene");
   m.gravity = o.vec3("gravity", Vec3(0.0, 0.0, -9.81));
   if (o.has("solver")) {
-    Object s(o.at("solver"), "solver", {"method", "step", "tolerance"});
+    Object s(o.at("solver"), "solver", {"method", "step", "tolerance", "energyGainLimit"});
     const std::string method = s.string("method", "rk4");
     const auto chosen = methodFromName(method);
     if (!chosen) {
@@ -343,6 +343,9 @@ Scene parseScene(const std::string& text) {
     m.maxStep = positive(s, "step", &step);
     m.tolerance = s.number("tolerance", defaults::kTolerance);
     if (m.tolerance < 0.0) fail("solver.tolerance", "must be >= 0, got " + num(m.tolerance));
+    m.energyGainLimit = s.number("energyGainLimit", defaults::kEnergyGainLimit);
+    if (m.energyGainLimit < 0.0)
+      fail("solver.energyGainLimit", "must be >= 0 (0: unchecked), got " + num(m.energyGainLimit));
   }
   m.bodies = readList<BodyConstants>(o, "bodies", true, readBody);
   if (m.bodies.empty()) fail("bodies", "must hold at least one body");

@@ -41,6 +41,7 @@ Scene loadSceneFile(const std::string& path);
 namespace defaults {
 constexpr double kSolverStep = 1e-3;       // s
 constexpr double kTolerance = 1e-6;        // 1, adaptive methods' local error tolerance
+constexpr double kEnergyGainLimit = 1e-3;  // 1, the energy audit's limit (world.h)
 constexpr double kRestitution = 0.5;
 constexpr double kStaticFriction = 0.6;
 constexpr double kKineticFriction = 0.4;

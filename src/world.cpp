@@ -32,6 +32,7 @@ WorldData initialData(const WorldModel& model) {
   d.inputRate.assign(n, BodyInput{});
   d.aux.resize(n);
   d.contacts.assign(n, 0);
+  d.energyGain.assign(n, 0.0);
 #if RIGID_WITH_COLLISIONS
   std::vector<bool> collides;
   for (const BodyConstants& body : model.bodies) collides.push_back(body.collides);
@@ -148,9 +149,42 @@ int advance(const WorldModel& model, WorldData& data, double tau, std::vector<Bo
   return lo;
 }
 
-// Accepts next as the new state if it is finite.
-StepResult commit(const WorldModel& model, WorldData& data, std::vector<BodyState>& next) {
+// 2 x the rotational kinetic energy L . I(t)^-1 L, in the body frame.
+double twiceRotationalEnergy(const BodyConstants& body, const BodyState& y) {
+  const Vec3 Lb = y.q.conjugate() * y.L;
+  return Lb.dot(body.IbodyInv * Lb);
+}
+
+// The energy audit: a body whose angular momentum the step left bitwise unchanged had
+// no torque and no impulse, so any change of its rotational energy is the method's
+// own. Summed over the run, a gain beyond the limit refuses the step (Y unchanged),
+// naming the body and a step that would have kept the gain to half the limit.
+StepResult auditRotationalEnergy(const WorldModel& model, WorldData& data, const std::vector<BodyState>& next,
+                                 double h) {
+  if (!(model.energyGainLimit > 0.0)) return {};
+  std::vector<double>& gain = data.scratch.energyGain;
+  gain = data.energyGain;
+  for (size_t i = 0; i < next.size(); ++i) {
+    if (next[i].L != data.Y[i].L) continue;
+    const double before = twiceRotationalEnergy(model.bodies[i], data.Y[i]);
+    if (!(before > 0.0)) continue;
+    gain[i] += std::log(twiceRotationalEnergy(model.bodies[i], next[i]) / before);
+    if (std::expm1(gain[i]) > model.energyGainLimit) {
+      StepResult r = failed(static_cast<int>(i));
+      r.cause = kEnergyGain;
+      r.energyGain = std::expm1(gain[i]);
+      r.stableStep = h * 0.5 * model.energyGainLimit / r.energyGain;  // the gain is ~ proportional to h
+      return r;
+    }
+  }
+  std::swap(data.energyGain, gain);
+  return {};
+}
+
+// Accepts next as the new state if it is finite and the energy audit passes.
+StepResult commit(const WorldModel& model, WorldData& data, std::vector<BodyState>& next, double h) {
   if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);
+  if (StepResult r = auditRotationalEnergy(model, data, next, h); !r.ok) return r;
   std::swap(data.Y, next);
   refreshAuxiliaries(model, data);
   return {};
@@ -206,7 +240,7 @@ StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
   const int steps = advance(model, data, h, next);
   if (steps == 0) return failed(-1);
   data.steps += steps;
-  return commit(model, data, next);
+  return commit(model, data, next, h);
 #else
   // Impacts split the step: integrate to the instant of impact, answer it, go on.
   constexpr int kMaxImpactsPerStep = 16;
@@ -222,7 +256,7 @@ StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
         !anyImpact(model, data, h, data.Y))
       taken = locateImpact(model, data, h, rest, next);
     respondToContacts(model, data, h, next);
-    if (const StepResult r = commit(model, data, next); !r.ok) return r;
+    if (const StepResult r = commit(model, data, next, h); !r.ok) return r;
     data.steps += steps;
     done += taken;
     if (taken == rest || impacts >= kMaxImpactsPerStep) return {};

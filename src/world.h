@@ -23,6 +23,9 @@ struct WorldModel {
   Method method = Method::RK4;
   double maxStep = 1e-3;                 // s, largest internal step
   double tolerance = 1e-6;               // 1, local error tolerance of adaptive methods (0: fixed steps)
+  // 1, largest relative gain of a torque-free body's rotational energy over a run
+  // before a step is refused (0: unchecked); explicit Euler gains ~(h |omega|)^2 a step.
+  double energyGainLimit = 1e-3;
   std::vector<BodyConstants> bodies;
   std::vector<Surface> surfaces;
   std::vector<Medium> media;
@@ -35,6 +38,7 @@ struct Scratch {
   std::vector<BodyDerivative> k[7];
   std::vector<BodyState> y, y4;   // the adaptive method's current state and its 4th-order solution
   std::vector<Vec3> u;            // Lie-group stages: rotation vector of each body
+  std::vector<double> energyGain; // the energy audit's trial sums
   double adaptiveStep = 0.0;      // s, the adaptive method's next trial step (0: none yet)
 };
 
@@ -47,6 +51,9 @@ struct WorldData {
   std::vector<BodyInput> inputRate;
   std::vector<BodyAux> aux;    // auxiliaries of Y, valid after initialise() and step()
   std::vector<int> contacts;   // contact points of each body at the end of the last step
+  // ln(E / E0) of each body's rotational energy, summed over the steps in which no
+  // torque or impulse changed its angular momentum: what the method itself added.
+  std::vector<double> energyGain;
   long steps = 0;              // internal steps taken since the counter was last cleared
   double errorEstimate = 0.0;  // the adaptive method's last local error estimate (1)
   // Body-body collision detection, when at least two bodies can collide; shared by
@@ -70,7 +77,12 @@ struct StepResult {
   long substeps = 1;
   std::string cause;
   double stableStep = 0.0;  // s, the largest step that cause allows (when cause is set)
+  double energyGain = 0.0;  // when cause is kEnergyGain: the body's relative gain it would reach
 };
+
+// StepResult::cause of a step refused because a torque-free body's rotational energy
+// would grow beyond WorldModel::energyGainLimit.
+inline constexpr const char* kEnergyGain = "rotational energy gain";
 
 // Advances the world by one internal step h (s). On a non-finite result the step is
 // not taken: Y stays as it was and the result names the body.

@@ -8,7 +8,7 @@ import subprocess
 import sys
 
 import pytest
-from fmpy.fmi2 import fmi2FMUstate
+from fmpy.fmi2 import fmi2FMUstate, fmi2LastSuccessfulTime
 
 from harness import Slave, status_of
 
@@ -125,3 +125,37 @@ def test_state_holds_inputs_parameters_and_machine_state(fmu):
         s.slave.doStep(0.0, H)  # allowed again
     finally:
         s.close()
+
+
+def test_state_holds_the_energy_audit_and_the_last_step(fmu_of, tmp_path):
+    """The energy audit's sums are part of the state: explicit Euler tumbling, restored
+    from bytes serialised at t = 1 s into a fresh instance, is refused at the same step
+    as the uninterrupted run (a state without the sums would restart them at 0 and run
+    on). The last communication step, which directional derivatives use, is too."""
+    import scenes
+    fmu = fmu_of(scenes.free_spin(method="euler", name="EulerTumble"))
+
+    def until_refused(s, t0):
+        for k in range(400):
+            if status_of(lambda: s.slave.doStep(t0 + k * H, H)) != "OK":
+                return s.slave.getRealStatus(fmi2LastSuccessfulTime)
+        return None
+
+    straight, restored = Slave(fmu), Slave(fmu)
+    try:
+        straight.initialize()
+        for k in range(round(1.0 / H)):
+            straight.slave.doStep(k * H, H)
+        blob = bytes(straight.slave.serializeFMUstate(straight.slave.getFMUstate()))
+        dv = straight.slave.getDirectionalDerivative(straight.vr(["spinner.angularVelocity[1]"]),
+                                                     straight.vr(["spinner.torque[1]"]), [1.0])
+        refused_at = until_refused(straight, 1.0)
+        assert refused_at is not None and refused_at > 1.0
+        state = restored.slave.deSerializeFMUstate(blob)
+        restored.slave.setFMUstate(state)
+        assert restored.slave.getDirectionalDerivative(restored.vr(["spinner.angularVelocity[1]"]),
+                                                       restored.vr(["spinner.torque[1]"]), [1.0]) == dv
+        assert until_refused(restored, 1.0) == refused_at
+    finally:
+        straight.close()
+        restored.close()

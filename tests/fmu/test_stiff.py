@@ -60,21 +60,22 @@ def test_explicit_rk4_sub_steps_stiff_drag_and_says_so(fmu_of):
 @pytest.mark.parametrize("method", ["euler", "rk4", "symplecticEuler"])
 def test_fast_spin_is_sub_stepped_not_lost(fmu_of, method):
     """h |omega| = 6: explicit fixed-step methods sub-step (rk4 to h |omega| <= 0.1,
-    where it keeps a free rotation's energy; the first-order ones to 0.05); the spin
-    stays what it was (torque-free, symmetric body)."""
+    where it keeps a free rotation's energy; symplecticEuler, which turns q as splitting
+    does, to 0.15; explicit Euler to 0.05); the spin stays what it was (torque-free,
+    symmetric body)."""
     w = 6.0 / 1e-2
     s = scenes.scene(f"FastSpin_{method}", [scenes.body("ball", shape={"type": "sphere", "radius": R},
                                                         angularVelocity=[0, 0, w])],
                      gravity=(0, 0, 0), method=method, step=1e-2)
     r = simulate_fmu(str(fmu_of(s)), stop_time=0.1, output_interval=0.1,
                      output=["ball.angularVelocity[3]", "ball.orientation[1]", "ball.orientation[4]", "solver.steps"])
-    assert r["solver.steps"][-1] == 10 * (60 if method == "rk4" else 120)
+    assert r["solver.steps"][-1] == 10 * {"rk4": 60, "symplecticEuler": 40, "euler": 120}[method]
     assert r["ball.angularVelocity[3]"][-1] == pytest.approx(w, rel=1e-12)
     angle = 2 * math.atan2(r["ball.orientation[4]"][-1], r["ball.orientation[1]"][-1])
     expected = math.remainder(w * 0.1, 2 * math.pi)
     q_norm = math.hypot(r["ball.orientation[1]"][-1], r["ball.orientation[4]"][-1])
     assert abs(q_norm - 1) < 1e-12
-    # accuracy per sub-step: symplectic Euler turns q exactly for a constant omega; RK4
+    # accuracy per sub-step: symplectic Euler turns a symmetric body exactly; RK4
     # at h |omega| = 0.1 loses ~1e-7 rad per sub-step; Euler turns 2 atan(0.025) rad
     # instead of 0.05 per sub-step: stable, but not accurate (no claim)
     tolerance = {"symplecticEuler": 1e-9, "rk4": 1e-4}.get(method)
@@ -99,3 +100,60 @@ def test_hopeless_step_is_refused_with_cause_and_a_step_that_works(fmu_of):
         assert slave.slave.getRealStatus(fmi2LastSuccessfulTime) == 0.0
     finally:
         slave.close()
+
+
+def tumble_until_refused(fmu, step, stop=10.0, H=0.05):
+    """Explicit Euler tumbling near the intermediate axis: the time of the refused step
+    (None if it ran to `stop`), the refusal message and the largest relative energy gain
+    seen at the communication points, computed here from omega and L."""
+    s = Slave(fmu)
+    try:
+        s.initialize({"solver.step": step})
+        W = [f"spinner.angularVelocity[{i}]" for i in (1, 2, 3)]
+        L = [f"spinner.angularMomentum[{i}]" for i in (1, 2, 3)]
+        E0 = np.dot(s.get(*W), s.get(*L))
+        worst = 0.0
+        for k in range(round(stop / H)):
+            st = status_of(lambda: s.slave.doStep(k * H, H))
+            if st != "OK":
+                assert st == "Discard"
+                assert s.slave.getBooleanStatus(fmi2Terminated) is True
+                msg = [m for stat, _, m in s.log.messages if stat == "Discard"][-1]
+                return s.slave.getRealStatus(fmi2LastSuccessfulTime), msg, worst
+            worst = max(worst, np.dot(s.get(*W), s.get(*L)) / E0 - 1)
+        return None, "", worst
+    finally:
+        s.close()
+
+
+def test_explicit_euler_energy_gain_is_refused_with_a_step_that_works(fmu_of):
+    """Explicit Euler adds energy to a free rotation (Lie-Euler: ~(h |omega|)^2 a step).
+    The energy audit refuses the step that takes the gain beyond solver.energyGainLimit
+    (default 1e-3): fmi2Discard naming the body, the limit and a smaller step; until then
+    every OK output is within the limit. Rerun with that step, the same time passes
+    within the limit (the gain is proportional to h)."""
+    fmu = fmu_of(scenes.free_spin(method="euler", name="EulerTumble"))
+    t_refused, msg, worst = tumble_until_refused(fmu, 1e-3)
+    assert t_refused is not None and 0.5 < t_refused < 10.0, (t_refused, worst)
+    assert worst <= 1e-3
+    assert "body spinner" in msg and "solver.energyGainLimit = 0.001" in msg, msg
+    step = float(re.search(r"a solver\.step of ([0-9.e+-]+) s would have kept it", msg).group(1))
+    assert 1e-4 < step < 1e-3, msg
+    t_again, _, worst_again = tumble_until_refused(fmu, step, stop=math.ceil(t_refused / 0.05) * 0.05)
+    assert t_again is None, (t_again, worst_again)
+    assert worst_again <= 0.6e-3, worst_again  # about half the limit, as announced
+
+
+def test_energy_audit_off_lets_euler_run_and_splitting_never_trips_it(fmu_of):
+    """solver.energyGainLimit = 0 turns the audit off (Euler then gains > 1e-3 and says
+    nothing); splitting keeps the energy and runs 10 s under the default limit."""
+    fmu = fmu_of(scenes.free_spin(method="euler", name="EulerTumble"))
+    s = Slave(fmu)
+    try:
+        s.initialize({"solver.energyGainLimit": 0.0})
+        for k in range(100):
+            assert status_of(lambda: s.slave.doStep(k * 0.05, 0.05)) == "OK"
+    finally:
+        s.close()
+    t, _, worst = tumble_until_refused(fmu_of(scenes.free_spin(method="splitting", name="SplitTumble")), 1e-3)
+    assert t is None and abs(worst) < 1e-4, (t, worst)

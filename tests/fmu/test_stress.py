@@ -1,7 +1,7 @@
 """The stability stress suite in quick mode (scripts/stress.py --quick): every case with
 every integration method of the FMU; it must write a table with a row for every case
 and method, and no run may FAIL (a non-finite output or a broken criterion while the
-FMU answered fmi2OK) but the known ones below. No timing is asserted."""
+FMU answered fmi2OK). No timing is asserted."""
 import os
 import pathlib
 import re
@@ -19,20 +19,6 @@ def methods_of_the_fmu(fmu_of):
     fmu = fmu_of(stress.spinner_scene("Probe", (1, 2, 3), (0, 0, 1)))
     md = read_model_description(str(fmu))
     return [i.name for t in md.typeDefinitions if t.name == "SolverMethod" for i in t.items]
-
-
-# Known and documented (docs/stability.md, issue 7 left open for them): the first-order
-# methods euler and symplecticEuler do not keep the energy of a free rotation within
-# the 1e-3 bound, even sub-stepped to h |omega| <= 0.05 (their energy error per step is
-# of order (h |omega|)^2, and a needle-like inertia amplifies it), and symplecticEuler's
-# heave on a 1 mm draft oscillates by more than 1e-3 of its energy. Every other run of
-# every method must hold, sub-step or be refused.
-KNOWN_FIRST_ORDER = {"euler", "symplecticEuler"}
-
-
-def known(line):
-    method = line.split("|")[2].strip()
-    return method in KNOWN_FIRST_ORDER and "energy" in line
 
 
 def test_quick_stress_suite_has_every_case_and_method_and_nothing_fails(tmp_path, fmu_of):
@@ -55,7 +41,7 @@ def test_quick_stress_suite_has_every_case_and_method_and_nothing_fails(tmp_path
     for c in keys:
         assert re.search(rf"^\| `{re.escape(c)}` \|", summary, re.M), f"{c} not in the summary"
     failing = [line[:400] for line in text.split("## Every run", 1)[1].splitlines()
-               if re.match(r"^\| `[^`]+` \| \S+ \| FAILS", line) and not known(line)]
+               if re.match(r"^\| `[^`]+` \| \S+ \| FAILS", line)]
     assert not failing, "runs that FAIL:\n" + "\n".join(failing)
     # the suite's own verdict: it exits non-zero exactly when some run FAILS
     assert (proc.returncode != 0) == ("FAILS" in summary), proc.stdout[-3000:] + proc.stderr[-3000:]

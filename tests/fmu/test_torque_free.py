@@ -53,7 +53,9 @@ def test_intermediate_axis_matches_high_precision_reference(intermediate_axis_ru
 def orientation_error(fmu, method, h, T, omega0):
     # tolerance 0: dopri5 takes fixed steps, so that its order shows
     r = simulate_fmu(str(fmu), stop_time=T, output_interval=T,
-                     start_values={"solver.method": method, "solver.step": h, "solver.tolerance": 0.0})
+                     start_values={"solver.method": method, "solver.step": h, "solver.tolerance": 0.0,
+                                   # an order study: explicit Euler's energy gain is the point
+                                   "solver.energyGainLimit": 0.0})
     q_ref, _ = torque_free(INERTIA, omega0, [1, 0, 0, 0], np.array([0.0, T]))
     return rotation_angle_between(cols(r, Q)[-1:], q_ref[-1:])[0]
 
@@ -61,7 +63,9 @@ def orientation_error(fmu, method, h, T, omega0):
 @pytest.mark.parametrize("method,steps,order,tol", [
     (2, [0.02, 0.01, 0.005, 0.0025], 4.0, 0.4),  # rk4 (h |omega| within its spin limit 0.1)
     (1, [4e-3, 2e-3, 1e-3, 5e-4], 1.0, 0.2),     # euler
-    (3, [4e-3, 2e-3, 1e-3, 5e-4], 1.0, 0.2),     # symplecticEuler
+    # symplecticEuler: without torque the kick is nil and the drift is the splitting's
+    # free rotation, second order (its first order shows with forces: test_stiff.py)
+    (3, [0.02, 0.01, 0.005, 0.0025], 2.0, 0.2),
     (4, [0.02, 0.01, 0.005, 0.0025], 2.0, 0.2),  # splitting
     (5, [0.02, 0.01, 0.005, 0.0025], 4.0, 0.4),  # lieRk4
     (6, [0.08, 0.04, 0.02, 0.01], 5.0, 0.5),     # dopri5 with fixed steps

@@ -84,11 +84,13 @@ TEST_F(Description, VariableNamesAreThoseOfTheInterface) {
   const std::set<std::string> world = {"time", "gravity[1]", "gravity[2]", "gravity[3]",
                                        "solver.method", "solver.step",
                                        // extensions (issue 6): adaptive tolerance, step counts
-                                       "solver.tolerance", "solver.steps", "solver.errorEstimate"};
+                                       "solver.tolerance", "solver.steps", "solver.errorEstimate",
+                                       // issue 7: the energy audit's limit
+                                       "solver.energyGainLimit"};
   EXPECT_EQ(byOwner["world"], world);
   EXPECT_EQ(byOwner.size(), 3u);
   // 27 per body + 6 world variables.
-  EXPECT_EQ(vars.size(), 2u * 28u + 9u);  // 28 per body, 9 for the world
+  EXPECT_EQ(vars.size(), 2u * 28u + 10u);  // 28 per body, 10 for the world
 }
 
 TEST_F(Description, CausalityAndUnitsFollowTheInterfaceTable) {

@@ -166,6 +166,7 @@ TEST(Dynamics, TorqueFreeAsymmetricBodyKeepsLBitwiseAndUnitQuaternion) {
   for (rigid::Method method : {rigid::Method::RK4, rigid::Method::Euler}) {
     SCOPED_TRACE(rigid::methodName(method));
     rigid::WorldModel model = world(method, Vec3(0, 0, -9.81));
+    model.energyGainLimit = 0.0;  // Euler's energy gain is refused otherwise (next test)
     rigid::BodyConstants b = asymmetricBody(Vec3(1.0, 2.0, 2.5), 4.0);
     b.start.orientation = unitQuat(0.3, 0.5, -0.7, 0.1);
     b.start.angularVelocity = Vec3(0.2, 4.0, -0.3);  // tumbles: near the unstable axis
@@ -181,6 +182,67 @@ TEST(Dynamics, TorqueFreeAsymmetricBodyKeepsLBitwiseAndUnitQuaternion) {
       ASSERT_LT(std::abs(data.Y[0].q.norm() - 1.0), 1e-14) << "step " << n;
     }
   }
+}
+
+// 2 E = L . I(t)^-1 L, from the auxiliaries (independent of the audit's body-frame form).
+namespace {
+double twiceEnergy(const rigid::WorldData& data) { return data.Y[0].L.dot(data.aux[0].omega); }
+}  // namespace
+
+// The energy audit: explicit Euler's torque-free tumbling gains energy step by step
+// (Lie-Euler); the step that would take the gain beyond the limit is refused with the
+// body, the gain and a smaller step, and the state is left as it was. The methods that
+// keep a free rotation's energy run 1e4 steps under the same limit.
+TEST(Dynamics, EnergyAuditRefusesExplicitEulersGainOnAFreeRotation) {
+  const double limit = 1e-3;
+  for (rigid::Method method : {rigid::Method::Euler, rigid::Method::RK4, rigid::Method::SymplecticEuler,
+                               rigid::Method::Splitting, rigid::Method::LieRK4}) {
+    SCOPED_TRACE(rigid::methodName(method));
+    rigid::WorldModel model = world(method, Vec3(0, 0, -9.81));
+    model.energyGainLimit = limit;
+    rigid::BodyConstants b = asymmetricBody(Vec3(1.0, 2.0, 2.5), 4.0);
+    b.start.angularVelocity = Vec3(0.2, 4.0, -0.3);
+    model.bodies.push_back(b);
+    rigid::WorldData data = rigid::initialData(model);
+    const double E0 = twiceEnergy(data);
+    int n = 0;
+    rigid::StepResult r;
+    for (; n < 10000 && (r = rigid::step(model, data, 1e-3)).ok; ++n) {
+      ASSERT_LE(twiceEnergy(data) / E0 - 1.0, limit * (1 + 1e-9)) << "step " << n;
+    }
+    if (method != rigid::Method::Euler) {
+      EXPECT_EQ(n, 10000) << r.cause;
+      continue;
+    }
+    ASSERT_LT(n, 10000) << "explicit Euler was expected to gain energy";
+    EXPECT_EQ(r.cause, rigid::kEnergyGain);
+    EXPECT_EQ(r.body, 0);
+    EXPECT_GT(r.energyGain, limit);
+    EXPECT_GT(r.stableStep, 0.0);
+    EXPECT_LT(r.stableStep, 1e-3);
+    // Refused, not taken: the state is that of the last accepted step, within the limit.
+    const rigid::BodyState before = data.Y[0];
+    EXPECT_FALSE(rigid::step(model, data, 1e-3).ok);
+    EXPECT_TRUE(before.X == data.Y[0].X && before.q.coeffs() == data.Y[0].q.coeffs() &&
+                before.P == data.Y[0].P && before.L == data.Y[0].L);
+    EXPECT_LE(twiceEnergy(data) / E0 - 1.0, limit * (1 + 1e-9));
+    // Unchecked (0), the same run goes on.
+    model.energyGainLimit = 0.0;
+    EXPECT_TRUE(rigid::step(model, data, 1e-3).ok);
+  }
+}
+
+// A torque changes L: those steps are the torque's work, not the method's, and are
+// not audited (a spin-up by a constant torque quadruples the energy and is fine).
+TEST(Dynamics, EnergyAuditLeavesTorquedBodiesAlone) {
+  rigid::WorldModel model = world(rigid::Method::Euler, Vec3(0, 0, -9.81));
+  model.bodies.push_back(asymmetricBody(Vec3(1.0, 2.0, 2.5), 4.0));
+  model.bodies[0].start.angularVelocity = Vec3(0.0, 0.0, 1.0);
+  rigid::WorldData data = rigid::initialData(model);
+  data.input[0].torque = Vec3(0.0, 0.0, 2.5);  // doubles omega_z in 1 s
+  const double E0 = twiceEnergy(data);
+  for (int n = 0; n < 1000; ++n) ASSERT_TRUE(rigid::step(model, data, 1e-3).ok) << n;
+  EXPECT_NEAR(twiceEnergy(data) / E0, 4.0, 1e-9);
 }
 
 namespace {

@@ -131,7 +131,7 @@ TEST(Scene, UnknownBodyField) {
 
 TEST(Scene, UnknownSolverField) {
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"method": "rk4", "dt": 0.1}, )"),
-                     "solver.dt: unknown field (known: method, step, tolerance)");
+                     "solver.dt: unknown field (known: method, step, tolerance, energyGainLimit)");
 }
 
 TEST(Scene, NameNotIdentifier) {

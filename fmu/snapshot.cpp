@@ -71,7 +71,7 @@ std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
     w.put(s.data.input[i].force), w.put(s.data.input[i].torque);
     w.put(s.data.inputRate[i].force), w.put(s.data.inputRate[i].torque);
     w.put(static_cast<int32_t>(s.data.contacts[i]));
-    w.put(s.data.energyGain[i]);
+    w.put(s.data.audit.energy[i]), w.put(s.data.audit.reference[i]), w.put(s.data.audit.carried[i]);
   }
   w.put(static_cast<int64_t>(s.data.steps));
   w.put(s.data.errorEstimate);
@@ -114,7 +114,8 @@ std::string deserialize(const char* bytes, size_t size, const std::string& guid,
     int32_t contacts = 0;
     ok = r.get(y.X) && r.get(y.q) && r.get(y.P) && r.get(y.L) && r.get(out.data.input[i].force) &&
          r.get(out.data.input[i].torque) && r.get(out.data.inputRate[i].force) &&
-         r.get(out.data.inputRate[i].torque) && r.get(contacts) && r.get(out.data.energyGain[i]);
+         r.get(out.data.inputRate[i].torque) && r.get(contacts) &&
+         r.get(out.data.audit.energy[i]) && r.get(out.data.audit.reference[i]) && r.get(out.data.audit.carried[i]);
     out.data.contacts[i] = contacts;
   }
   int64_t steps = 0;

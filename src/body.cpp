@@ -37,6 +37,12 @@ void computeAuxiliaries(const BodyConstants& body, const BodyState& y, BodyAux& 
   aux.omega = aux.Iinv * y.L;
 }
 
+void computeVelocities(const BodyConstants& body, const BodyState& y, BodyAux& aux) {
+  aux.V = y.P / body.mass;
+  aux.R = y.q.normalized().toRotationMatrix();
+  aux.omega = aux.R * (body.IbodyInv * (aux.R.transpose() * y.L));
+}
+
 BodyState initialState(const BodyConstants& body) {
   BodyState y;
   y.X = body.start.position;

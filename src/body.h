@@ -76,6 +76,11 @@ struct BodyInput {
 // R is taken from the normalised q.
 void computeAuxiliaries(const BodyConstants& body, const BodyState& y, BodyAux& aux);
 
+// V, R and omega only (aux.Iinv is left as it was): what a free body's derivative needs.
+// omega = R (Ibody^-1 (R^T L)) costs three matrix-vector products instead of forming
+// I(t)^-1, which only contacts use.
+void computeVelocities(const BodyConstants& body, const BodyState& y, BodyAux& aux);
+
 // Y of a body at rest in its start pose, with P = M V0 and L = I(0) omega0.
 BodyState initialState(const BodyConstants& body);
 

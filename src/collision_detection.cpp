@@ -1,5 +1,7 @@
 #include "collision_detection.h"
 
+#include <chrono>
+
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
@@ -454,8 +456,10 @@ CollisionDetector::~CollisionDetector() = default;
 CollisionDetector::CollisionDetector(CollisionDetector&&) noexcept = default;
 CollisionDetector& CollisionDetector::operator=(CollisionDetector&&) noexcept = default;
 
-void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, std::vector<Contact>& out) {
+void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, std::vector<Contact>& out,
+                               StepProfile* profile) {
   Impl& d = *impl_;
+  const auto start = profile ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   if (Y.size() != d.bodySlot.size())
     throw std::invalid_argument("CollisionDetector::detect: " + std::to_string(Y.size()) + " states for " +
                                 std::to_string(d.bodySlot.size()) + " bodies");
@@ -487,7 +491,13 @@ void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, s
   d.pairs.clear();
   d.manager.collide(&d, &Impl::collect);
   std::sort(d.pairs.begin(), d.pairs.end());
+  const auto broad = profile ? std::chrono::steady_clock::now() : start;
   for (const Impl::Pair& p : d.pairs) d.narrowphase(p, margin, out);
+  if (profile) {
+    profile->broadphase += std::chrono::duration<double, std::nano>(broad - start).count();
+    profile->narrowphase +=
+        std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - broad).count();
+  }
 }
 
 void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, std::vector<Contact>& out) {

@@ -45,7 +45,9 @@ class CollisionDetector {
   // each with its own depth; other contacts one point.
   // `margin` (m, >= 0): pairs closer than this are reported too, with
   // depth = -distance (a gap); with margin 0 only touching or overlapping pairs.
-  void detect(const std::vector<BodyState>& Y, double margin, std::vector<Contact>& out);
+  // With `profile`, the time of the broadphase and of the narrowphase is added to it.
+  void detect(const std::vector<BodyState>& Y, double margin, std::vector<Contact>& out,
+              StepProfile* profile = nullptr);
 
  private:
   struct Impl;

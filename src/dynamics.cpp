@@ -44,11 +44,15 @@ void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
 void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body,
                             const BodyInput& input, const BodyState& y, BodyAux& aux,
                             BodyDerivative& dy, bool withSurfaces) {
-  computeAuxiliaries(body, y, aux);
-  if (withSurfaces)
+  // Surfaces' support and friction need I(t)^-1 (the contact point's effective mass);
+  // the other forces need only the velocities.
+  if (withSurfaces && !model.surfaces.empty()) {
+    computeAuxiliaries(body, y, aux);
     accumulateForces(model, body, input, y, aux);
-  else
+  } else {
+    computeVelocities(body, y, aux);
     accumulateAppliedForces(model, body, input, y, aux);
+  }
   dy.dX = aux.V;
   dy.dq = spin(aux.omega, y.q);
   dy.dP = aux.F;

@@ -1,6 +1,7 @@
 #include "world.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -32,7 +33,6 @@ WorldData initialData(const WorldModel& model) {
   d.inputRate.assign(n, BodyInput{});
   d.aux.resize(n);
   d.contacts.assign(n, 0);
-  d.energyGain.assign(n, 0.0);
 #if RIGID_WITH_COLLISIONS
   std::vector<bool> collides;
   for (const BodyConstants& body : model.bodies) collides.push_back(body.collides);
@@ -55,6 +55,10 @@ WorldData initialData(const WorldModel& model) {
   d.scratch.u.resize(n);
   for (auto& k : d.scratch.k) k.resize(n);
   refreshAuxiliaries(model, d);
+  d.audit.carried.assign(n, 1.0);
+  d.audit.energy.resize(n);
+  for (size_t i = 0; i < n; ++i) d.audit.energy[i] = d.aux[i].omega.dot(d.Y[i].L);
+  d.audit.reference = d.audit.energy;
   return d;
 }
 
@@ -64,6 +68,28 @@ void refreshAuxiliaries(const WorldModel& model, WorldData& data) {
 }
 
 namespace {
+
+// Adds the time of its scope to a StepProfile field, when there is one.
+class Stopwatch {
+ public:
+  explicit Stopwatch(double* slot)
+      : slot_(slot), start_(slot ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{}) {}
+  ~Stopwatch() {
+    if (slot_) *slot_ += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start_).count();
+  }
+  Stopwatch(const Stopwatch&) = delete;
+  Stopwatch& operator=(const Stopwatch&) = delete;
+
+ private:
+  double* slot_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+double* slotOf(WorldData& data, double StepProfile::*field) {
+  return data.profiling ? &(data.profile.*field) : nullptr;
+}
+
+[[maybe_unused]] StepProfile* profileOf(WorldData& data) { return data.profiling ? &data.profile : nullptr; }
 
 void normaliseOrientations(std::vector<BodyState>& Y) {
   for (BodyState& y : Y) y.q.normalize();
@@ -77,17 +103,21 @@ void normaliseOrientations(std::vector<BodyState>& Y) {
   std::fill(data.contacts.begin(), data.contacts.end(), 0);
   (void)model, (void)h, (void)after;
 #if RIGID_WITH_SURFACES
-  for (size_t i = 0; i < after.size() && !model.surfaces.empty(); ++i) {
-    BodyAux& aux = data.aux[i];
-    computeAuxiliaries(model.bodies[i], after[i], aux);
-    accumulateAppliedForces(model, model.bodies[i], data.input[i], after[i], aux);
-    data.contacts[i] =
-        respondToSurfaces(model.surfaces, model.bodies[i], model.gravity, aux, h, data.Y[i], after[i]);
+  if (!model.surfaces.empty()) {
+    Stopwatch response(slotOf(data, &StepProfile::response));
+    for (size_t i = 0; i < after.size(); ++i) {
+      BodyAux& aux = data.aux[i];
+      computeAuxiliaries(model.bodies[i], after[i], aux);
+      accumulateAppliedForces(model, model.bodies[i], data.input[i], after[i], aux);
+      data.contacts[i] =
+          respondToSurfaces(model.surfaces, model.bodies[i], model.gravity, aux, h, data.Y[i], after[i]);
+    }
   }
 #endif
 #if RIGID_WITH_COLLISIONS
   if (CollisionCache* c = data.collision.get()) {
-    c->detector.detect(after, 1e-6, c->contacts);
+    c->detector.detect(after, 1e-6, c->contacts, profileOf(data));
+    Stopwatch response(slotOf(data, &StepProfile::response));
     resolveContacts(model, c->contacts, restingNormalSpeed(model.gravity, h), after, data.contacts);
   }
 #endif
@@ -113,6 +143,7 @@ StepResult failed(int body) {
 
 // Returns the integrator's steps (0: the adaptive method failed its tolerance).
 int advance(const WorldModel& model, WorldData& data, double tau, std::vector<BodyState>& next) {
+  Stopwatch integration(slotOf(data, &StepProfile::integration));
   const int steps = integrate(model, data, tau, next);
   normaliseOrientations(next);
   return steps;
@@ -125,7 +156,7 @@ int advance(const WorldModel& model, WorldData& data, double tau, std::vector<Bo
 #endif
 #if RIGID_WITH_COLLISIONS
   if (CollisionCache* c = data.collision.get()) {
-    c->detector.detect(Y, 0.0, c->contacts);
+    c->detector.detect(Y, 0.0, c->contacts, profileOf(data));
     return anyContactImpact(model, c->contacts, Y, restingNormalSpeed(model.gravity, h));
   }
 #endif
@@ -149,44 +180,51 @@ int advance(const WorldModel& model, WorldData& data, double tau, std::vector<Bo
   return lo;
 }
 
-// 2 x the rotational kinetic energy L . I(t)^-1 L, in the body frame.
-double twiceRotationalEnergy(const BodyConstants& body, const BodyState& y) {
-  const Vec3 Lb = y.q.conjugate() * y.L;
-  return Lb.dot(body.IbodyInv * Lb);
-}
-
 // The energy audit: a body whose angular momentum the step left bitwise unchanged had
 // no torque and no impulse, so any change of its rotational energy is the method's
-// own. Summed over the run, a gain beyond the limit refuses the step (Y unchanged),
-// naming the body and a step that would have kept the gain to half the limit.
-StepResult auditRotationalEnergy(const WorldModel& model, WorldData& data, const std::vector<BodyState>& next,
+// own. Over the run, a gain beyond the limit refuses the step, naming the body and a
+// step that would have kept the gain to half the limit (the gain grows with h). Reads
+// Y and the auxiliaries after the step, `before` the state before it; updates the
+// audit only when the step is accepted.
+StepResult auditRotationalEnergy(const WorldModel& model, WorldData& data, const std::vector<BodyState>& before,
                                  double h) {
-  if (!(model.energyGainLimit > 0.0)) return {};
-  std::vector<double>& gain = data.scratch.energyGain;
-  gain = data.energyGain;
-  for (size_t i = 0; i < next.size(); ++i) {
-    if (next[i].L != data.Y[i].L) continue;
-    const double before = twiceRotationalEnergy(model.bodies[i], data.Y[i]);
-    if (!(before > 0.0)) continue;
-    gain[i] += std::log(twiceRotationalEnergy(model.bodies[i], next[i]) / before);
-    if (std::expm1(gain[i]) > model.energyGainLimit) {
-      StepResult r = failed(static_cast<int>(i));
-      r.cause = kEnergyGain;
-      r.energyGain = std::expm1(gain[i]);
-      r.stableStep = h * 0.5 * model.energyGainLimit / r.energyGain;  // the gain is ~ proportional to h
-      return r;
+  WorldData::EnergyAudit& a = data.audit;
+  const size_t n = data.Y.size();
+  if (model.energyGainLimit > 0.0) {
+    for (size_t i = 0; i < n; ++i) {
+      if (data.Y[i].L != before[i].L || !(a.reference[i] > 0.0)) continue;
+      const double gain = a.carried[i] * data.aux[i].omega.dot(data.Y[i].L) / a.reference[i] - 1.0;
+      if (gain > model.energyGainLimit) {
+        StepResult r = failed(static_cast<int>(i));
+        r.cause = kEnergyGain;
+        r.energyGain = gain;
+        r.stableStep = h * 0.5 * model.energyGainLimit / gain;
+        return r;
+      }
     }
   }
-  std::swap(data.energyGain, gain);
+  for (size_t i = 0; i < n; ++i) {
+    const double energy = data.aux[i].omega.dot(data.Y[i].L);
+    if (data.Y[i].L != before[i].L) {  // a torque or an impulse: a new stretch starts here
+      if (a.reference[i] > 0.0) a.carried[i] *= a.energy[i] / a.reference[i];
+      a.reference[i] = energy;
+    }
+    a.energy[i] = energy;
+  }
   return {};
 }
 
-// Accepts next as the new state if it is finite and the energy audit passes.
+// Accepts next as the new state if it is finite and the energy audit passes; a
+// refused state is swapped back out.
 StepResult commit(const WorldModel& model, WorldData& data, std::vector<BodyState>& next, double h) {
   if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);
-  if (StepResult r = auditRotationalEnergy(model, data, next, h); !r.ok) return r;
-  std::swap(data.Y, next);
+  std::swap(data.Y, next);  // next: the state before the step
   refreshAuxiliaries(model, data);
+  if (StepResult r = auditRotationalEnergy(model, data, next, h); !r.ok) {
+    std::swap(data.Y, next);
+    refreshAuxiliaries(model, data);
+    return r;
+  }
   return {};
 }
 
@@ -320,6 +358,7 @@ StepResult step(const WorldModel& model, WorldData& data, double h) {
     plan.ok = false;
     return plan;
   }
+  if (data.profiling) data.profile.steps += plan.substeps;
   for (long k = 0; k < plan.substeps; ++k) {
     StepResult r = stepOnce(model, data, h / static_cast<double>(plan.substeps));
     if (!r.ok) return r;

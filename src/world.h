@@ -38,8 +38,17 @@ struct Scratch {
   std::vector<BodyDerivative> k[7];
   std::vector<BodyState> y, y4;   // the adaptive method's current state and its 4th-order solution
   std::vector<Vec3> u;            // Lie-group stages: rotation vector of each body
-  std::vector<double> energyGain; // the energy audit's trial sums
   double adaptiveStep = 0.0;      // s, the adaptive method's next trial step (0: none yet)
+};
+
+// Where a step's time goes (ns, summed over steps), for the benchmarks: filled only
+// while WorldData::profiling is set, so that a normal run pays no clock reads.
+struct StepProfile {
+  double integration = 0.0;  // the integrator's stages (impact location's re-integrations too)
+  double broadphase = 0.0;   // poses, bounding boxes, FCL's AABB tree and its candidate pairs
+  double narrowphase = 0.0;  // contact points of the candidate pairs
+  double response = 0.0;     // impulses, friction, position correction, surfaces' landing
+  long steps = 0;            // internal steps profiled
 };
 
 // Everything that changes during a run.
@@ -51,15 +60,21 @@ struct WorldData {
   std::vector<BodyInput> inputRate;
   std::vector<BodyAux> aux;    // auxiliaries of Y, valid after initialise() and step()
   std::vector<int> contacts;   // contact points of each body at the end of the last step
-  // ln(E / E0) of each body's rotational energy, summed over the steps in which no
-  // torque or impulse changed its angular momentum: what the method itself added.
-  std::vector<double> energyGain;
+  // The energy audit (world.cpp), per body: twice the rotational energy of Y, that at
+  // the start of the current stretch of steps free of torques and impulses, and the
+  // gain factor of the earlier stretches. carried * energy / reference - 1 is the
+  // relative energy the method itself has added.
+  struct EnergyAudit {
+    std::vector<double> energy, reference, carried;
+  } audit;
   long steps = 0;              // internal steps taken since the counter was last cleared
   double errorEstimate = 0.0;  // the adaptive method's last local error estimate (1)
   // Body-body collision detection, when at least two bodies can collide; shared by
   // copies of the data (it holds no state between steps but FCL's objects).
   std::shared_ptr<CollisionCache> collision;
   Scratch scratch;
+  bool profiling = false;
+  StepProfile profile;
 };
 
 // Data for the start of a run: every body at its start values, inputs zero.

@@ -1,0 +1,127 @@
+// rigid-bench-core SCENES_DIR [Google Benchmark flags]: the core without FMI, on the
+// scenes of scripts/bench_scenes.py.
+//   BM_Free/<method>/<N>: one world step of N free tumbling bodies; the counter
+//     ns_per_body_step is the time per step divided by N.
+//   BM_Pile/<N>: a pile of N cubes falling on a floor, 1 s of simulated time (500
+//     steps of 2 ms) per iteration from the same start; counters split the time into
+//     integration, broadphase, narrowphase and response (WorldData::profile) and give
+//     the deepest penetration seen (m) and the fastest body's speed at the end (m/s).
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "collision_response.h"
+#include "scene.h"
+#include "world.h"
+
+namespace {
+
+std::string scenesDir;
+
+rigid::Scene load(const std::string& file) {
+  return rigid::loadSceneFile(scenesDir + "/" + file);
+}
+
+void freeBodies(benchmark::State& state, rigid::Method method, int n) {
+  rigid::Scene scene = load("free_" + std::to_string(n) + ".json");
+  scene.model.method = method;
+  scene.model.energyGainLimit = 0.0;  // explicit Euler is timed, not audited
+  rigid::WorldData data = rigid::initialData(scene.model);
+  for (auto _ : state) {
+    const rigid::StepResult r = rigid::step(scene.model, data, scene.model.maxStep);
+    benchmark::DoNotOptimize(r.ok);
+  }
+  state.counters["ns_per_body_step"] =
+      benchmark::Counter(static_cast<double>(n) * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["substeps"] = static_cast<double>(data.steps) / static_cast<double>(state.iterations());
+}
+
+// Deepest overlap (m): between cubes as the step's last detection found it (before the
+// response moved them apart, so an upper bound), and of any cube's lowest corner below
+// the floor's top face (z = 0) after the step. (FCL's contacts with the floor's top are
+// left to the surface module, which answers them exactly: the geometry measures those.)
+double deepestPenetration(const rigid::Scene& scene, const rigid::WorldData& data) {
+  double deepest = 0.0;
+  for (const rigid::Contact& c : data.collision->contacts)
+    if (c.b >= 0) deepest = std::max(deepest, c.depth);
+  for (size_t i = 0; i < data.Y.size(); ++i) {
+    const rigid::Vec3 half = 0.5 * scene.model.bodies[i].shape.size;
+    const double reach = data.aux[i].R.row(2).cwiseAbs().dot(half);
+    deepest = std::max(deepest, reach - data.Y[i].X.z());
+  }
+  return deepest;
+}
+
+void pile(benchmark::State& state, int n) {
+  const rigid::Scene scene = load("pile_" + std::to_string(n) + ".json");
+  const double h = scene.model.maxStep;
+  const int steps = static_cast<int>(1.0 / h + 0.5);
+  rigid::StepProfile total;
+  double deepest = 0.0;
+  double fastest = 0.0;
+  long ok = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    rigid::WorldData data = rigid::initialData(scene.model);
+    data.profiling = true;
+    state.ResumeTiming();
+    for (int k = 0; k < steps; ++k) {
+      if (!rigid::step(scene.model, data, h).ok) break;
+      ++ok;
+      // the contacts of the last detection: those after this step's response (a probe
+      // of the benchmark, not part of the step: kept out of the timed region)
+      state.PauseTiming();
+      deepest = std::max(deepest, deepestPenetration(scene, data));
+      state.ResumeTiming();
+    }
+    state.PauseTiming();
+    // how settled the pile is at the end: the fastest body's speed (m/s); MuJoCo's
+    // figure (scripts/bench_peers.py) is the same
+    for (const rigid::BodyAux& a : data.aux) fastest = std::max(fastest, a.V.norm());
+    state.ResumeTiming();
+    total.integration += data.profile.integration;
+    total.broadphase += data.profile.broadphase;
+    total.narrowphase += data.profile.narrowphase;
+    total.response += data.profile.response;
+    total.steps += data.profile.steps;
+  }
+  const double runs = static_cast<double>(state.iterations());
+  const double perStep = 1e-3 / (runs * steps);  // ns summed over runs -> us per step
+  state.counters["us_integration"] = total.integration * perStep;
+  state.counters["us_broadphase"] = total.broadphase * perStep;
+  state.counters["us_narrowphase"] = total.narrowphase * perStep;
+  state.counters["us_response"] = total.response * perStep;
+  state.counters["internal_steps"] = static_cast<double>(total.steps) / runs;
+  state.counters["steps_ok"] = static_cast<double>(ok) / runs;
+  state.counters["max_penetration_m"] = deepest;
+  state.counters["max_speed_end_mps"] = fastest;
+  state.counters["sim_seconds"] = steps * h;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: rigid-bench-core SCENES_DIR [benchmark flags]\n"
+                         "  (scenes: .venv/bin/python scripts/bench_scenes.py SCENES_DIR)\n");
+    return 2;
+  }
+  scenesDir = argv[1];
+  for (const rigid::MethodInfo& m : rigid::methods())
+    for (int n : {1, 10, 100, 1000, 10000})
+      benchmark::RegisterBenchmark(("BM_Free/" + std::string(m.name) + "/" + std::to_string(n)).c_str(),
+                                   freeBodies, m.method, n);
+  for (int n : {10, 100, 1000})
+    benchmark::RegisterBenchmark(("BM_Pile/" + std::to_string(n)).c_str(), pile, n)
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # Installs everything rigidfmu needs on a fresh Debian machine: the Debian packages
-# (compiler, CMake, Eigen, FCL, nlohmann-json, GoogleTest) and a Python venv (.venv)
-# with the pinned packages of requirements.txt. Idempotent and quick when done.
+# (compiler, CMake, Eigen, FCL, nlohmann-json, GoogleTest, chromium for the replay's
+# browser test), a Python venv (.venv) with the pinned packages of requirements.txt and
+# the replay page's npm packages (scripts/replay/package-lock.json; Node.js and npm come
+# with the machine). Idempotent and quick when done.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
 debian_packages=(
   build-essential cmake python3-venv patchelf
-  libeigen3-dev libfcl-dev nlohmann-json3-dev libgtest-dev
+  libeigen3-dev libfcl-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
+  chromium
 )
 missing=()
 for p in "${debian_packages[@]}"; do
@@ -27,5 +30,16 @@ if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
   echo "setup: creating $venv with the pinned Python packages"
   python3 -m venv "$venv"
   "$venv/bin/pip" install -q --disable-pip-version-check -r "$root/requirements.txt"
+  echo "$want" > "$stamp"
+fi
+
+# three.js, esbuild and playwright-core exactly as locked; npm ci empties node_modules
+# first, so a changed lock never leaves a stale package behind.
+replay="$root/scripts/replay"
+stamp="$replay/node_modules/.package-lock.sha256"
+want="$(sha256sum "$replay/package-lock.json" | cut -d' ' -f1)"
+if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
+  echo "setup: installing the replay page's npm packages"
+  (cd "$replay" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
   echo "$want" > "$stamp"
 fi

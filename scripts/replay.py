@@ -1,0 +1,127 @@
+"""Writes the 3D replay of a run: one self-contained HTML file (three.js inlined, no
+network) from a result CSV (as scripts/simulate.py writes it) and the scene JSON.
+
+    replay.py RESULT.csv SCENE.json OUT.html
+
+The run is embedded in the page as JSON:
+    {"title": str, "up": [x, y, z] (unit, against gravity; z without gravity),
+     "time": [s, ...],
+     "bodies": [{"name", "shape" (as in the scene), "colour": "#rrggbb",
+                 "position": [x, y, z, ...] m, "orientation": [w, x, y, z, ...],
+                 "contacts": [int, ...] or null}],
+     "surfaces": [{"name", "min", "max", "orientation": [w, x, y, z]}],
+     "media": [{"name", "type", "min", "max"}]}
+A body's position or orientation that the FMU does not output is its start value from
+the scene (one frame); its contacts are then null.
+
+Body k is drawn in PALETTE[k % len(PALETTE)] (scene order): colours are the replay's
+choice, not part of the scene format, and the browser test finds the bodies by them.
+"""
+import argparse
+import csv
+import json
+import pathlib
+import subprocess
+import sys
+
+import numpy as np
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+PAGE = ROOT / "scripts" / "replay"
+TEMPLATE = PAGE / "dist" / "replay.html"
+DATA_MARKER = "<!-- replay-data -->"
+
+# Saturated colours with hues at least 20 degrees apart, none of them the grey of the
+# surfaces or the pale blue of water.
+PALETTE = ["#e53935", "#43a047", "#fb8c00", "#1e88e5", "#8e24aa", "#fdd835", "#00acc1", "#d81b60"]
+
+
+def colour_of(index: int) -> str:
+    return PALETTE[index % len(PALETTE)]
+
+
+def ensure_template() -> pathlib.Path:
+    """dist/replay.html, rebuilt by esbuild when a source of the page is newer."""
+    sources = [*(PAGE / "src").iterdir(), PAGE / "build.mjs", PAGE / "package-lock.json"]
+    if TEMPLATE.exists() and TEMPLATE.stat().st_mtime >= max(s.stat().st_mtime for s in sources):
+        return TEMPLATE
+    if not (PAGE / "node_modules" / "three").is_dir():
+        sys.exit(f"replay: {PAGE}/node_modules is missing; scripts/setup.sh installs it (npm ci)")
+    subprocess.run(["node", str(PAGE / "build.mjs")], check=True, stdout=subprocess.DEVNULL)
+    return TEMPLATE
+
+
+def read_result(path: pathlib.Path) -> dict:
+    """The CSV's columns by name, as float arrays."""
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    header, values = rows[0], np.array(rows[1:], dtype=float)
+    return {name: values[:, i] for i, name in enumerate(header)}
+
+
+def flat(result: dict, columns: list, decimals: int):
+    """Frames of several columns interleaved, rounded: a smaller page, and still far
+    finer than a pixel."""
+    return np.round(np.column_stack([result[c] for c in columns]), decimals).ravel().tolist()
+
+
+def body_track(result: dict, body: dict, index: int) -> dict:
+    name = body["name"]
+    track = {"name": name, "shape": body["shape"], "colour": colour_of(index)}
+    for field, n, start in (("position", 3, [0.0, 0.0, 0.0]), ("orientation", 4, [1.0, 0.0, 0.0, 0.0])):
+        columns = [f"{name}.{field}[{i}]" for i in range(1, n + 1)]
+        if all(c in result for c in columns):
+            track[field] = flat(result, columns, 6)
+        else:
+            track[field] = [float(v) for v in body.get(field, start)]
+    contacts = result.get(f"{name}.contacts")
+    track["contacts"] = None if contacts is None else contacts.astype(int).tolist()
+    return track
+
+
+def up_of(scene: dict) -> list:
+    g = np.array(scene.get("gravity", [0.0, 0.0, -9.81]), dtype=float)
+    norm = np.linalg.norm(g)
+    return [0.0, 0.0, 1.0] if norm == 0 else (-g / norm).tolist()
+
+
+def run_data(result: dict, scene: dict, title: str) -> dict:
+    return {
+        "title": title,
+        "up": up_of(scene),
+        "time": np.round(result["time"], 9).tolist(),
+        "bodies": [body_track(result, b, k) for k, b in enumerate(scene["bodies"])],
+        "surfaces": [{"name": s["name"], "min": s["min"], "max": s["max"],
+                      "orientation": s.get("orientation", [1.0, 0.0, 0.0, 0.0])}
+                     for s in scene.get("surfaces", [])],
+        "media": [{"name": m["name"], "type": m.get("type", "water"), "min": m["min"], "max": m["max"]}
+                  for m in scene.get("media", [])],
+    }
+
+
+def write_replay(csv_path, scene_path, out_path) -> pathlib.Path:
+    csv_path, scene_path, out_path = map(pathlib.Path, (csv_path, scene_path, out_path))
+    scene = json.loads(scene_path.read_text())
+    title = f"{scene.get('name', 'scene')} ({csv_path.name})"
+    data = json.dumps(run_data(read_result(csv_path), scene, title), separators=(",", ":"))
+    # "</" inside the JSON would end its script element early; "<\/" reads the same
+    data = data.replace("</", "<\\/")
+    page = ensure_template().read_text()
+    block = f'<script id="replay-data" type="application/json">{data}</script>'
+    out_path.parent.mkdir(parents=True, exist_ok=True)
+    out_path.write_text(page.replace(DATA_MARKER, block, 1))
+    return out_path
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("csv")
+    parser.add_argument("scene")
+    parser.add_argument("out")
+    args = parser.parse_args()
+    out = write_replay(args.csv, args.scene, args.out)
+    print(f"  wrote {out} ({out.stat().st_size // 1024} KiB)")
+
+
+if __name__ == "__main__":
+    main()

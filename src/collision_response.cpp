@@ -26,7 +26,8 @@ struct Side {
     if (!y) return Vec3::Zero();
     return y->P * invMass + (Iinv * y->L).cross(r);
   }
-  // An immovable side (shock propagation): its velocity counts, impulses move it not.
+  // An immovable side (shock propagation): it takes no impulse, and the body above
+  // is stopped against it as against a static partner.
   void freeze() {
     invMass = 0.0;
     Iinv = Mat3::Zero();
@@ -44,16 +45,27 @@ void applyImpulse(std::vector<BodyState>& Y, int body, const Side& s, const Vec3
   Y[body].L += s.r.cross(J);
 }
 
-Side sideOf(const WorldModel& model, const std::vector<BodyState>& Y, int body, const Vec3& point) {
+// I(t)^-1 = R Ibody^-1 R^T of one body at its pose in Y.
+Mat3 inverseInertia(const WorldModel& model, const std::vector<BodyState>& Y, int body) {
+  const Mat3 R = Y[body].q.normalized().toRotationMatrix();
+  return R * model.bodies[body].IbodyInv * R.transpose();
+}
+
+// The side of body `body` (-1: a surface) at a contact point, with its inverse
+// inertia given (the response computes each body's once: impulses change no pose).
+Side sideOf(const WorldModel& model, const std::vector<BodyState>& Y, int body, const Vec3& point,
+            const Mat3& Iinv) {
   Side s;
   if (body < 0) return s;
-  const BodyConstants& c = model.bodies[body];
   s.y = &Y[body];
-  s.invMass = 1.0 / c.mass;
-  const Mat3 R = Y[body].q.normalized().toRotationMatrix();
-  s.Iinv = R * c.IbodyInv * R.transpose();
+  s.invMass = 1.0 / model.bodies[body].mass;
+  s.Iinv = Iinv;
   s.r = point - Y[body].X;
   return s;
+}
+
+Side sideOf(const WorldModel& model, const std::vector<BodyState>& Y, int body, const Vec3& point) {
+  return body < 0 ? Side{} : sideOf(model, Y, body, point, inverseInertia(model, Y, body));
 }
 
 struct Coefficients {
@@ -113,7 +125,10 @@ double boundingRadius(const Shape& s) {
 bool anyContactImpact(const WorldModel& model, const std::vector<Contact>& contacts,
                       const std::vector<BodyState>& Y, double restingSpeed) {
   for (const Contact& c : contacts) {
-    if (c.depth <= 0.0 || onTopFace(model, Y, c)) continue;
+    // As for surfaces (struckSurface): only a bouncing impact (xi > 0) is located in
+    // time. With xi = 0 the pair ends with a common normal velocity, and the position
+    // correction by inverse masses keeps their centre of mass where it would be.
+    if (c.depth <= 0.0 || coefficientsOf(model, c).xi <= 0.0 || onTopFace(model, Y, c)) continue;
     const Side a = sideOf(model, Y, c.a, c.point);
     const Side b = sideOf(model, Y, c.b, c.point);
     if (approach(a, b, c.normal) < -restingSpeed) return true;
@@ -211,21 +226,44 @@ void resolveContacts(const WorldModel& model, const std::vector<Contact>& found,
   mergePairs(model, Y, found, contacts);
   if (contacts.empty()) return;
   appendSurfaceContacts(model, Y, contacts);
+  // Poses do not change while impulses are exchanged: each body's inverse inertia,
+  // each contact's sides and its inverse effective mass along the normal are computed
+  // once, not in every Gauss-Seidel pass.
+  std::vector<Mat3> Iinv(Y.size());
+  std::vector<bool> known(Y.size(), false);
+  auto inertiaOf = [&](int body) -> const Mat3& {
+    if (!known[body]) Iinv[body] = inverseInertia(model, Y, body), known[body] = true;
+    return Iinv[body];
+  };
+  struct Row {
+    const Contact* c;
+    Side a, b;
+    double normalMass;  // 1 / (inverse effective masses along n)
+    Coefficients k;
+  };
+  std::vector<Row> rows;
+  rows.reserve(contacts.size());
+  for (const Contact& c : contacts) {
+    if (c.depth < -kTouching) continue;
+    Row row{&c, sideOf(model, Y, c.a, c.point, inertiaOf(c.a)),
+            c.b < 0 ? Side{} : sideOf(model, Y, c.b, c.point, inertiaOf(c.b)), 0.0, coefficientsOf(model, c)};
+    row.normalMass = 1.0 / (row.a.inverseEffectiveMass(c.normal) + row.b.inverseEffectiveMass(c.normal));
+    rows.push_back(row);
+  }
   for (int pass = 0; pass < kMaxPasses; ++pass) {
     bool approaching = false;
-    for (const Contact& c : contacts) {
-      if (c.depth < -kTouching) continue;
-      const Side a = sideOf(model, Y, c.a, c.point);
-      const Side b = sideOf(model, Y, c.b, c.point);
+    for (const Row& row : rows) {
+      const Contact& c = *row.c;
+      const Side& a = row.a;
+      const Side& b = row.b;
       const Vec3& n = c.normal;
       const double vrel = approach(a, b, n);
       if (vrel >= -1e-12) continue;
       approaching = true;
-      const Coefficients k = coefficientsOf(model, c);
       // The seed's j = -(1 + xi) vrel / (1/Ma + 1/Mb + n.[(Ia^-1 (ra x n)) x ra + ...]);
       // an approach slower than a resting body's is not bounced (xi taken as 0).
-      const double xi = -vrel > restingSpeed ? k.xi : 0.0;
-      const double j = -(1.0 + xi) * vrel / (a.inverseEffectiveMass(n) + b.inverseEffectiveMass(n));
+      const double xi = -vrel > restingSpeed ? row.k.xi : 0.0;
+      const double j = -(1.0 + xi) * vrel * row.normalMass;
       applyImpulse(Y, c.a, a, -j * n);
       applyImpulse(Y, c.b, b, j * n);
       // Coulomb friction impulse against the tangential slip, |jt| <= mu j.
@@ -235,7 +273,7 @@ void resolveContacts(const WorldModel& model, const std::vector<Contact>& found,
       if (slip < 1e-15) continue;
       const Vec3 t = ut / slip;
       const double stick = slip / (a.inverseEffectiveMass(t) + b.inverseEffectiveMass(t));
-      const double jt = stick <= k.mus * j ? stick : k.muk * j;
+      const double jt = stick <= row.k.mus * j ? stick : row.k.muk * j;
       applyImpulse(Y, c.a, a, jt * t);
       applyImpulse(Y, c.b, b, -jt * t);
     }
@@ -256,8 +294,8 @@ void resolveContacts(const WorldModel& model, const std::vector<Contact>& found,
   for (size_t o : order) {
     const Contact& c = contacts[o];
     if (c.depth < -kTouching || c.b < 0 || level[c.a] == level[c.b]) continue;
-    Side a = sideOf(model, Y, c.a, c.point);
-    Side b = sideOf(model, Y, c.b, c.point);
+    Side a = sideOf(model, Y, c.a, c.point, inertiaOf(c.a));
+    Side b = sideOf(model, Y, c.b, c.point, inertiaOf(c.b));
     (level[c.a] < level[c.b] ? a : b).freeze();
     const double vrel = approach(a, b, c.normal);
     if (vrel >= 0.0) continue;

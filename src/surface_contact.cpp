@@ -139,7 +139,12 @@ bool struckSurface(const std::vector<Surface>& surfaces, const BodyConstants& bo
                    const Vec3& gravity, double h, const BodyState& after) {
   for (const Surface& surface : surfaces) {
     const SurfaceContact c = surfaceContact(surface, body, after);
-    if (c.overFace && c.gap < 0.0 && (after.P / body.mass).dot(c.n) < -restingNormalSpeed(gravity, h))
+    // Only a landing that bounces (xi > 0) needs its instant: a bounce's height depends
+    // on where it starts, while a landing with xi = 0 just stops along the normal,
+    // which the end-of-step response does as well (and a pile of such landings would
+    // otherwise re-integrate every step dozens of times).
+    if (c.overFace && c.gap < 0.0 && c.xi > 0.0 &&
+        (after.P / body.mass).dot(c.n) < -restingNormalSpeed(gravity, h))
       return true;
   }
   return false;

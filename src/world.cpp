@@ -41,7 +41,7 @@ WorldData initialData(const WorldModel& model) {
   // friction), and FCL's contacts there are left out (resolveContacts).
   const long colliding = std::count(collides.begin(), collides.end(), true);
   if (colliding >= 2 || (colliding >= 1 && !model.surfaces.empty())) {
-    d.collision = std::make_shared<CollisionCache>(CollisionCache{CollisionDetector(model, collides), {}, {}, {}, {}});
+    d.collision = std::make_shared<CollisionCache>(CollisionCache{CollisionDetector(model, collides), {}, {}, {}, {}, {}});
     for (const BodyConstants& body : model.bodies) {
       d.collision->halfThickness.push_back(body.collides ? halfThickness(body.shape) : 0.0);
       d.collision->boundingRadius.push_back(body.collides ? boundingRadius(body.shape) : 0.0);
@@ -98,10 +98,16 @@ void normaliseOrientations(std::vector<BodyState>& Y) {
 // Contact response: what happens at an instant rather than over the step. The
 // surfaces need the applied force at the new state to tell whether static friction
 // holds a body that has come to rest.
+// The distance within which bodies count as touching (m): contacts are detected with
+// this margin, so that a body resting on another is answered even with a tiny gap.
+constexpr double kContactMargin = 1e-6;
+
+// `detected`: the collision cache already holds the contacts of `after` (with the
+// margin), so they are not detected again.
 [[maybe_unused]] void respondToContacts(const WorldModel& model, WorldData& data, double h,
-                       std::vector<BodyState>& after) {
+                       std::vector<BodyState>& after, bool detected) {
   std::fill(data.contacts.begin(), data.contacts.end(), 0);
-  (void)model, (void)h, (void)after;
+  (void)model, (void)h, (void)after, (void)detected;
 #if RIGID_WITH_SURFACES
   if (!model.surfaces.empty()) {
     Stopwatch response(slotOf(data, &StepProfile::response));
@@ -116,7 +122,7 @@ void normaliseOrientations(std::vector<BodyState>& Y) {
 #endif
 #if RIGID_WITH_COLLISIONS
   if (CollisionCache* c = data.collision.get()) {
-    c->detector.detect(after, 1e-6, c->contacts, profileOf(data));
+    if (!detected) c->detector.detect(after, kContactMargin, c->contacts, profileOf(data));
     Stopwatch response(slotOf(data, &StepProfile::response));
     resolveContacts(model, c->contacts, restingNormalSpeed(model.gravity, h), after, data.contacts);
   }
@@ -149,18 +155,27 @@ int advance(const WorldModel& model, WorldData& data, double tau, std::vector<Bo
   return steps;
 }
 
-[[maybe_unused]] bool anyImpact(const WorldModel& model, WorldData& data, double h, const std::vector<BodyState>& Y) {
+// Whether some body strikes a surface or another body in Y. With forResponse the
+// contacts of Y are detected into the collision cache (with the response's margin)
+// whatever the answer, for the response to use.
+[[maybe_unused]] bool anyImpact(const WorldModel& model, WorldData& data, double h, const std::vector<BodyState>& Y,
+                                bool forResponse = false) {
 #if RIGID_WITH_SURFACES
   for (size_t i = 0; i < Y.size() && !model.surfaces.empty(); ++i)
     if (struckSurface(model.surfaces, model.bodies[i], model.gravity, h, Y[i])) return true;
 #endif
 #if RIGID_WITH_COLLISIONS
-  if (CollisionCache* c = data.collision.get()) {
-    c->detector.detect(Y, 0.0, c->contacts, profileOf(data));
-    return anyContactImpact(model, c->contacts, Y, restingNormalSpeed(model.gravity, h));
+  // Only bouncing impacts are located (anyContactImpact) and restitutions combine by
+  // geometric mean, so with no colliding body of xi > 0 (a pile of inelastic cubes)
+  // there is nothing to detect here.
+  const bool bouncy = std::any_of(model.bodies.begin(), model.bodies.end(),
+                                  [](const BodyConstants& b) { return b.collides && b.restitution > 0.0; });
+  if (CollisionCache* c = data.collision.get(); c && (bouncy || forResponse)) {
+    c->detector.detect(Y, forResponse ? kContactMargin : 0.0, c->contacts, profileOf(data));
+    return bouncy && anyContactImpact(model, c->contacts, Y, restingNormalSpeed(model.gravity, h));
   }
 #endif
-  (void)model, (void)data, (void)h, (void)Y;
+  (void)model, (void)data, (void)h, (void)Y, (void)forResponse;
   return false;
 }
 
@@ -242,7 +257,7 @@ int collisionSubsteps(const WorldModel& model, const WorldData& data, double h) 
   const CollisionCache* c = data.collision.get();
   if (!c) return 1;
   const size_t n = data.Y.size();
-  std::vector<double>& travel = data.collision->travel;
+  std::vector<double>& travel = data.collision->travel;  // (the cache is the data's scratch)
   travel.assign(n, 0.0);
   for (size_t i = 0; i < n; ++i)
     if (c->boundingRadius[i] > 0.0)
@@ -251,12 +266,24 @@ int collisionSubsteps(const WorldModel& model, const WorldData& data, double h) 
   auto need = [&](double move, double thickness) {
     if (move > thickness) substeps = std::max(substeps, std::ceil(move / thickness));
   };
-  for (size_t i = 0; i < n; ++i) {
-    if (c->boundingRadius[i] <= 0.0) continue;
-    const double reach = c->boundingRadius[i] + travel[i];
-    for (size_t j = i + 1; j < n; ++j) {
-      if (c->boundingRadius[j] <= 0.0) continue;
-      if ((data.Y[i].X - data.Y[j].X).norm() > reach + c->boundingRadius[j] + travel[j]) continue;
+  // Pairs that can reach each other, by sweep and prune along x: bodies sorted by the
+  // low end of their reach, each compared only with those whose reach starts before
+  // its own ends (not all N^2 / 2 pairs: a pile of 1000 cubes has a few thousand).
+  std::vector<size_t>& order = data.collision->order;
+  order.clear();
+  for (size_t i = 0; i < n; ++i)
+    if (c->boundingRadius[i] > 0.0) order.push_back(i);
+  auto reachOf = [&](size_t i) { return c->boundingRadius[i] + travel[i]; };
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return data.Y[a].X.x() - reachOf(a) < data.Y[b].X.x() - reachOf(b);
+  });
+  for (size_t oi = 0; oi < order.size(); ++oi) {
+    const size_t i = order[oi];
+    const double reach = reachOf(i);
+    for (size_t oj = oi + 1; oj < order.size(); ++oj) {
+      const size_t j = order[oj];
+      if (data.Y[j].X.x() - reachOf(j) > data.Y[i].X.x() + reach) break;
+      if ((data.Y[i].X - data.Y[j].X).norm() > reach + reachOf(j)) continue;
       need(std::max(travel[i], travel[j]), std::min(c->halfThickness[i], c->halfThickness[j]));
     }
     for (const Surface& s : model.surfaces) {
@@ -290,10 +317,19 @@ StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
     // Out of range: refused before contact detection ever sees it.
     if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);
     double taken = rest;
-    if (impacts < kMaxImpactsPerStep && anyImpact(model, data, h, next) &&
-        !anyImpact(model, data, h, data.Y))
-      taken = locateImpact(model, data, h, rest, next);
-    respondToContacts(model, data, h, next);
+    // Without surfaces, the end state's contacts are detected once, for the impact
+    // check and (when no impact splits the step) for the response. Surfaces answer
+    // first and move bodies out of their faces, so body contacts are detected after.
+    const bool reuse = model.surfaces.empty();
+    bool detected = false;
+    if (impacts < kMaxImpactsPerStep) {
+      if (anyImpact(model, data, h, next, reuse)) {
+        if (!anyImpact(model, data, h, data.Y)) taken = locateImpact(model, data, h, rest, next);
+      } else {
+        detected = reuse;
+      }
+    }
+    respondToContacts(model, data, h, next, detected);
     if (const StepResult r = commit(model, data, next, h); !r.ok) return r;
     data.steps += steps;
     done += taken;

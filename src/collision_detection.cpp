@@ -531,6 +531,16 @@ void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, std::ve
       }
       return;
     }
+    if (margin <= 0.0) return;
+    // Apart: a gap below the margin needs FCL's distance (GJK, costly), but boxes grown
+    // by half the margin on every side that are still apart are at least the margin
+    // apart (two points closer than it have their midpoint in both grown boxes), which
+    // the same cheap separating-axis routine tells: most neighbours in a pile end here.
+    boxContacts.clear();
+    const Vec3 grow = Vec3::Constant(margin);
+    fcl::detail::boxBox2<double>(2.0 * A.half + grow, oA->getTransform(), 2.0 * B.half + grow, oB->getTransform(),
+                                 n, &depth, &code, 4, boxContacts);
+    if (code == 0) return;
     appendWithinMargin(A, B, oA, oB, margin, proto, out);
     return;
   }

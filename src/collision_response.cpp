@@ -258,7 +258,7 @@ void resolveContacts(const WorldModel& model, const std::vector<Contact>& found,
       const Side& b = row.b;
       const Vec3& n = c.normal;
       const double vrel = approach(a, b, n);
-      if (vrel >= -1e-12) continue;
+      if (vrel >= -1e-9) continue;  // slower approaches move bodies < 1e-11 m a step: settled
       approaching = true;
       // The seed's j = -(1 + xi) vrel / (1/Ma + 1/Mb + n.[(Ia^-1 (ra x n)) x ra + ...]);
       // an approach slower than a resting body's is not bounced (xi taken as 0).

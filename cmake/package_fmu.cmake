@@ -45,7 +45,9 @@ file(GET_RUNTIME_DEPENDENCIES
   UNRESOLVED_DEPENDENCIES_VAR unresolved
   POST_EXCLUDE_REGEXES
     ".*/ld-linux[^/]*$" ".*/libc\\.so[^/]*$" ".*/libm\\.so[^/]*$" ".*/libstdc\\+\\+\\.so[^/]*$"
-    ".*/libgcc_s\\.so[^/]*$" ".*/libpthread\\.so[^/]*$" ".*/libdl\\.so[^/]*$" ".*/librt\\.so[^/]*$")
+    ".*/libgcc_s\\.so[^/]*$" ".*/libpthread\\.so[^/]*$" ".*/libdl\\.so[^/]*$" ".*/librt\\.so[^/]*$"
+    # a sanitizer build's runtimes come from the host process (LD_PRELOAD), never the FMU
+    ".*/libasan\\.so[^/]*$" ".*/libubsan\\.so[^/]*$")
 if(unresolved)
   message(FATAL_ERROR "unresolved libraries of ${library}: ${unresolved}")
 endif()

@@ -1,5 +1,6 @@
 // The FMI 2.0 entry points. Each checks the instance and the state it is called in,
 // forwards to Instance, and catches every exception here, at the C boundary.
+#include <cstring>
 #include <exception>
 #include <new>
 #include <string>
@@ -11,6 +12,17 @@ using rigidfmu::Instance;
 namespace fmu = rigidfmu;
 
 namespace {
+
+// The bits of an enumeration argument (fmi2Type, fmi2StatusKind) as an int. A master
+// may pass any value, and reading one outside the enumeration's range as the enum type
+// is undefined behaviour (UBSan reports it), so it is copied out and compared as an int.
+template <class Enum>
+int enumBits(const Enum& e) {
+  static_assert(sizeof(Enum) == sizeof(int), "FMI enumerations are int-sized here");
+  int bits;
+  std::memcpy(&bits, &e, sizeof bits);
+  return bits;
+}
 
 constexpr unsigned kAnyState = fmu::kInstantiated | fmu::kInitializationMode |
                                fmu::kStepComplete | fmu::kStepFailed | fmu::kTerminated |
@@ -60,7 +72,7 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
                               fmi2Boolean loggingOn) {
   (void)visible;  // no user interface to show
   try {
-    return Instance::create(instanceName, fmuType, fmuGUID, fmuResourceLocation, functions,
+    return Instance::create(instanceName, enumBits(fmuType), fmuGUID, fmuResourceLocation, functions,
                             loggingOn);
   } catch (const std::exception& e) {
     if (functions && functions->logger)
@@ -213,7 +225,7 @@ fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind, fmi2Status*) {
 
 fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real* value) {
   return guarded(c, "fmi2GetRealStatus", kCanGetStatus,
-                 [&](Instance& i) { return i.getRealStatus(s, value); });
+                 [&](Instance& i) { return i.getRealStatus(enumBits(s), value); });
 }
 
 fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind, fmi2Integer*) {
@@ -225,7 +237,7 @@ fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind, fmi2Integ
 
 fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boolean* value) {
   return guarded(c, "fmi2GetBooleanStatus", kCanGetStatus,
-                 [&](Instance& i) { return i.getBooleanStatus(s, value); });
+                 [&](Instance& i) { return i.getBooleanStatus(enumBits(s), value); });
 }
 
 fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind, fmi2String*) {

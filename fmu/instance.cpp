@@ -44,7 +44,7 @@ std::string escapePercent(const std::string& s) {
 
 }  // namespace
 
-Instance* Instance::create(fmi2String instanceName, fmi2Type type, fmi2String guid,
+Instance* Instance::create(fmi2String instanceName, int type, fmi2String guid,
                            fmi2String resourceLocation, const fmi2CallbackFunctions* functions,
                            fmi2Boolean loggingOn) {
   if (!functions) return nullptr;  // nowhere to report to; the standard requires them
@@ -586,7 +586,7 @@ void Instance::noteSubsteps(const rigid::StepResult& r, double h) {
     log(fmi2OK, "logEvents", "fmi2DoStep: no sub-stepping needed any more");
 }
 
-fmi2Status Instance::getRealStatus(fmi2StatusKind kind, fmi2Real* value) {
+fmi2Status Instance::getRealStatus(int kind, fmi2Real* value) {
   if (!value) return error("fmi2GetRealStatus: value is NULL");
   if (kind != fmi2LastSuccessfulTime) {
     log(fmi2Discard, "logStatusDiscard", "fmi2GetRealStatus: only fmi2LastSuccessfulTime is provided");
@@ -596,7 +596,7 @@ fmi2Status Instance::getRealStatus(fmi2StatusKind kind, fmi2Real* value) {
   return fmi2OK;
 }
 
-fmi2Status Instance::getBooleanStatus(fmi2StatusKind kind, fmi2Boolean* value) {
+fmi2Status Instance::getBooleanStatus(int kind, fmi2Boolean* value) {
   if (!value) return error("fmi2GetBooleanStatus: value is NULL");
   if (kind != fmi2Terminated) {
     log(fmi2Discard, "logStatusDiscard", "fmi2GetBooleanStatus: only fmi2Terminated is provided");

@@ -30,7 +30,7 @@ class Instance {
  public:
   // Reads the scene from the resources and checks the GUID; on failure logs why
   // through the callbacks' logger and returns nullptr.
-  static Instance* create(fmi2String instanceName, fmi2Type type, fmi2String guid,
+  static Instance* create(fmi2String instanceName, int type, fmi2String guid,
                           fmi2String resourceLocation, const fmi2CallbackFunctions* functions,
                           fmi2Boolean loggingOn);
 
@@ -74,8 +74,8 @@ class Instance {
   fmi2Status serializeState(fmi2FMUstate state, fmi2Byte bytes[], size_t size);
   fmi2Status deserializeState(const fmi2Byte bytes[], size_t size, fmi2FMUstate* state);
 
-  fmi2Status getRealStatus(fmi2StatusKind kind, fmi2Real* value);
-  fmi2Status getBooleanStatus(fmi2StatusKind kind, fmi2Boolean* value);
+  fmi2Status getRealStatus(int kind, fmi2Real* value);  // kind: an fmi2StatusKind's bits
+  fmi2Status getBooleanStatus(int kind, fmi2Boolean* value);
 
   // Logs with a status; errors, discards and warnings always reach the logger, other
   // categories only when debug logging has them on.

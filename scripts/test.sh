@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # scripts/test.sh: every test. Installs what is missing, builds the core once (build/),
-# runs the C++ unit tests (ctest) and the FMU tests (pytest + fmpy).
+# runs the C++ unit tests (ctest) and the FMU tests (pytest + fmpy), then both again
+# against the ASan/UBSan build (scripts/sanitize.sh, build-asan/). Arguments go to the
+# first pytest run; RIGIDFMU_NO_SANITIZE=1 leaves the sanitizer run out.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/setup.sh"
@@ -10,3 +12,6 @@ build="${RIGIDFMU_BUILD:-$root/build}"
 (cd "$build" && /usr/bin/ctest --output-on-failure -j"$(nproc)")
 cd "$root"
 RIGIDFMU_SKIP_SETUP=1 RIGIDFMU_BUILD="$build" "$root/.venv/bin/python" -m pytest tests -q "$@"
+if [ -z "${RIGIDFMU_NO_SANITIZE:-}" ]; then
+  RIGIDFMU_SKIP_SETUP=1 RIGIDFMU_SANITIZE_BUILD="$build-asan" "$root/scripts/sanitize.sh"
+fi

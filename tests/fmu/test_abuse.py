@@ -36,6 +36,9 @@ ROOT = TESTS.parents[1]
 SCENE_DIR = ROOT / "scripts" / "scenes"
 EXAMPLES = ["default.json", "spinner.json", "tumble.json"]
 FULL = os.environ.get("RIGIDFMU_FULL") == "1"
+# Set by scripts/sanitize.sh: the FMUs are the ASan/UBSan build and the runtimes are
+# preloaded (LD_PRELOAD) into this process and its children.
+SANITIZED = os.environ.get("RIGIDFMU_SANITIZED") == "1"
 
 
 def example(name):
@@ -914,8 +917,9 @@ def driver(tmp_path_factory):
     headers = pathlib.Path(fmpy.__file__).parent / "c-code"
     d = tmp_path_factory.mktemp("driver")
     (d / "driver.cpp").write_text(DRIVER)
+    env = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}  # not for the compiler
     subprocess.run(["g++", "-std=c++17", "-O1", "-g", "-I", str(headers), str(d / "driver.cpp"),
-                    "-o", str(d / "driver"), "-ldl"], check=True)
+                    "-o", str(d / "driver"), "-ldl"], check=True, env=env)
     return d / "driver"
 
 
@@ -930,12 +934,18 @@ LEAK_SCENES = ["spinner.json", "default.json"]
 
 @pytest.mark.parametrize("scene_file", LEAK_SCENES)
 def test_a_thousand_cycles_without_valgrind(fmu_of, driver, scene_file, tmp_path):
-    """The driver itself, natively: 1000 cycles of every call, all OK."""
+    """The driver itself, natively: 1000 cycles of every call, all OK. In the sanitizer
+    run (scripts/sanitize.sh) the same 1000 cycles run under ASan/UBSan with
+    LeakSanitizer on: any leak, invalid access or undefined behaviour fails."""
     fmu = fmu_of(example(scene_file))
     unzip = extract(str(fmu), unzipdir=str(tmp_path / "fmu"))
+    env = dict(os.environ)
+    if SANITIZED:
+        env["ASAN_OPTIONS"] = "halt_on_error=1:detect_leaks=1"
     p = subprocess.run([str(driver)] + driver_args(fmu, unzip) + ["1000"], capture_output=True,
-                       text=True, timeout=120)
+                       text=True, timeout=600 if SANITIZED else 120, env=env)
     assert p.returncode == 0, p.stdout + p.stderr
+    assert "1000 cycles" in p.stdout
 
 
 # glibc's loader, not the FMU: while dlopen expands the bundled libraries' RUNPATH
@@ -958,6 +968,7 @@ VALGRIND_CYCLES = 1000 if FULL else 100
 
 
 @pytest.mark.skipif(not shutil.which("valgrind"), reason="valgrind is not on PATH")
+@pytest.mark.skipif(SANITIZED, reason="valgrind does not run beside ASan (LeakSanitizer checks instead)")
 @pytest.mark.parametrize("scene_file", LEAK_SCENES)
 def test_no_leaks_and_no_invalid_accesses_under_valgrind(fmu_of, driver, scene_file, tmp_path):
     fmu = fmu_of(example(scene_file))

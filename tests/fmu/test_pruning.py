@@ -35,9 +35,14 @@ def media_scene():
     return s
 
 
+# In the sanitizer run (scripts/sanitize.sh) the binaries also need the sanitizer
+# runtimes, which the host process provides (preloaded) and the packager leaves out.
+SANITIZER_RUNTIME = ("libasan.so", "libubsan.so") if os.environ.get("RIGIDFMU_SANITIZED") == "1" else ()
+
+
 def runtime(name):
     """The C and C++ runtime and the loader, which an FMU may take from the system."""
-    return os.path.basename(name).startswith(RUNTIME)
+    return os.path.basename(name).startswith(RUNTIME + SANITIZER_RUNTIME)
 
 
 def ldd(library, folder):

@@ -1,0 +1,616 @@
+"""The performance report (issue 9): what a step costs, in the core and through FMI, and
+beside MuJoCo on the same scenes, at equal or better accuracy. Figures only: nothing
+here is asserted; the targets are printed with PASS or MISS.
+
+1. Core (bench/bench_core.cpp, Google Benchmark): ns per body-step of N free tumbling
+   bodies with every method, and piles of N cubes falling on a floor with the time
+   split into broadphase, narrowphase, response and integration.
+2. FMU (fmpy's FMU2Slave): one fmi2DoStep of one internal step, reading every Real
+   output, and the FMI layer's overhead over the core, for 1 and 100 bodies.
+3. MuJoCo (scripts/bench_peers.py in .venv-peers): the same piles and free bodies;
+   the free body's orientation error at T against scipy's DOP853 (the accuracy
+   report's reference), ours and theirs, so that ratios are quoted at equal accuracy.
+4. Writes OUT/performance.md, OUT/performance/*.png and OUT/performance/bench.json.
+
+Times are CPU times (the machine is shared), medians of repeats.
+
+usage: bench.py [--quick] [--out DIR] [--build BUILD_DIR]   (scripts/bench.sh runs it)"""
+import argparse
+import json
+import math
+import os
+import pathlib
+import platform
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+import bench_scenes  # noqa: E402
+from quaternion import rotation_angle  # noqa: E402
+from report_accuracy import cpu_name, torque_free_reference  # noqa: E402
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+PEERS_PYTHON = ROOT / ".venv-peers" / "bin" / "python"
+
+# The issue's targets
+RK4_TARGET_NS = 100.0        # ns per body-step, free bodies, rk4, N = 1000
+PILE_RATIO_TARGET = 0.5      # our time per simulated second / MuJoCo's, pile of 1000
+PENETRATION_TARGET = 1e-3    # m
+
+
+def log(msg):
+    print(msg, flush=True)
+
+
+# ----------------------------------------------------------------------------------
+# 1. the core
+
+def run_core(build, scenes, quick):
+    """{("free", method, n): entry} and {("pile", n): entry} from rigid-bench-core's JSON;
+    with repetitions, the median aggregate (Google Benchmark takes the median of each
+    counter too)."""
+    exe = build / "rigid-bench-core"
+    free_n = "(1|10|100|1000)" if quick else "(1|10|100|1000|10000)"
+    pile_n = "(10|100)" if quick else "(10|100|1000)"
+    # free bodies: many short iterations, so min_time and repetitions; piles: one whole
+    # simulated second per repetition
+    runs = [(f"^BM_Free/[A-Za-z0-9]+/{free_n}$", "0.05" if quick else "0.2", 1 if quick else 5),
+            (f"^BM_Pile/{pile_n}/", None, 1 if quick else 3)]
+    results = {}
+    context = None
+    for pattern, min_time, reps in runs:
+        with tempfile.NamedTemporaryFile(suffix=".json") as f:
+            subprocess.run([str(exe), str(scenes), f"--benchmark_filter={pattern}",
+                            *([f"--benchmark_min_time={min_time}"] if min_time else []),
+                            f"--benchmark_repetitions={reps}",
+                            "--benchmark_report_aggregates_only=true" if reps > 1 else
+                            "--benchmark_report_aggregates_only=false",
+                            "--benchmark_format=console", "--benchmark_out_format=json",
+                            f"--benchmark_out={f.name}"], check=True, stdout=sys.stdout)
+            data = json.load(open(f.name))
+        context = data["context"]
+        for b in data["benchmarks"]:
+            if reps > 1 and b.get("aggregate_name") != "median":
+                continue
+            parts = b["run_name"].split("/")
+            key = ("free", parts[1], int(parts[2])) if parts[0] == "BM_Free" else ("pile", int(parts[1]))
+            results[key] = b
+    return results, context
+
+
+def free_table(core):
+    """{method: {n: ns per body-step}}"""
+    out = {}
+    for key, b in core.items():
+        if key[0] == "free":
+            # a rate counter inverted: seconds per body-step in the JSON (the console
+            # shows it with an SI prefix)
+            out.setdefault(key[1], {})[key[2]] = b["ns_per_body_step"] * 1e9
+    return out
+
+
+def pile_table(core):
+    """{n: {phase: us per step, total, per simulated second, penetration}}"""
+    out = {}
+    for key, b in core.items():
+        if key[0] != "pile":
+            continue
+        scale = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b["time_unit"]]
+        cpu = b["cpu_time"] * scale  # s for one simulated second (iterations: 1)
+        wall = b["real_time"] * scale
+        steps = b["steps_ok"]
+        # The profile reads the wall clock (steady_clock): each phase is taken as its
+        # share of the wall time, applied to the CPU time, so that the phases and
+        # "other" add up to the CPU total even while the machine is shared.
+        share = cpu / wall
+        phases = {p: b[f"us_{p}"] * share for p in ("broadphase", "narrowphase", "response", "integration")}
+        total = cpu / steps * 1e6
+        out[key[1]] = dict(phases, other=total - sum(phases.values()), total_us=total,
+                           s_per_simulated_s=cpu / b["sim_seconds"] if steps else math.nan,
+                           steps_ok=steps, steps=round(b["sim_seconds"] / bench_scenes.PILE_STEP),
+                           max_penetration_m=b["max_penetration_m"],
+                           max_speed_end_mps=b.get("max_speed_end_mps", math.nan))
+    return dict(sorted(out.items()))
+
+
+# ----------------------------------------------------------------------------------
+# 2. the FMU
+
+def build_fmus(build, scenes, names, folder):
+    env = dict(os.environ, RIGIDFMU_SKIP_SETUP="1", RIGIDFMU_BUILD=str(build))
+    out = {}
+    for name in names:
+        fmu = folder / f"{name}.fmu"
+        subprocess.run([str(ROOT / "scripts" / "build_fmu.sh"), str(scenes / f"{name}.json"), str(fmu)],
+                       check=True, env=env, stdout=subprocess.DEVNULL)
+        out[name] = fmu
+    return out
+
+
+class Slave:
+    """One instance of an FMU, initialised with the given Real parameters."""
+
+    def __init__(self, fmu, folder, params=None):
+        from fmpy import extract, read_model_description
+        from fmpy.fmi2 import FMU2Slave
+        self.md = read_model_description(str(fmu))
+        self.vars = {v.name: v for v in self.md.modelVariables}
+        self.dir = extract(str(fmu), unzipdir=tempfile.mkdtemp(prefix="bench-", dir=folder))
+        self.slave = FMU2Slave(guid=self.md.guid, unzipDirectory=self.dir,
+                               modelIdentifier=self.md.coSimulation.modelIdentifier, instanceName="bench")
+        self.slave.instantiate(loggingOn=False)
+        self.slave.setupExperiment(startTime=0.0)
+        if params:
+            self.slave.setReal([self.vars[k].valueReference for k in params], list(params.values()))
+        self.slave.enterInitializationMode()
+        self.slave.exitInitializationMode()
+        self.t = 0.0
+        self.real_outputs = [v.valueReference for v in self.md.modelVariables
+                             if v.causality == "output" and v.type == "Real"]
+
+    def steps(self, h, n):
+        """n calls of fmi2DoStep(h); the CPU seconds they took. Time is t0 + k h, never
+        summed (the FMU checks the communication point)."""
+        t_begin = self.t
+        t0 = time.process_time()
+        for k in range(n):
+            self.slave.doStep(t_begin + k * h, h)
+        dt = time.process_time() - t0
+        self.t = t_begin + n * h
+        return dt
+
+    def close(self):
+        self.slave.terminate()
+        self.slave.freeInstance()
+
+
+def median_per_call(fn, calls, repeats):
+    """Median over repeats of the CPU seconds per call of fn(calls) (fn returns CPU s)."""
+    return statistics.median(fn(calls) / calls for _ in range(repeats))
+
+
+def fmu_bench(fmus, folder, quick):
+    """Per body count: doStep of one internal step (1 ms), getReal of every Real output,
+    a one-variable getReal (the floor of a call from Python through ctypes), and doStep
+    of 1 s (1000 internal steps) for the amortised cost; seconds, medians."""
+    calls, repeats = (500, 3) if quick else (3000, 7)
+    out = {}
+    for n, fmu in fmus.items():
+        s = Slave(fmu, folder)
+        s.steps(1e-3, 50)  # warm-up: first-touch of the instance's memory
+        do_step = median_per_call(lambda c: s.steps(1e-3, c), calls, repeats)
+        vrs = s.real_outputs
+
+        def reads(c, vrs=vrs):
+            t0 = time.process_time()
+            for _ in range(c):
+                s.slave.getReal(vrs)
+            return time.process_time() - t0
+        get_all = median_per_call(reads, calls, repeats)
+        get_one = median_per_call(lambda c: reads(c, vrs[:1]), calls, repeats)
+        long_calls = 2 if quick else 5
+        amortised = statistics.median(s.steps(1.0, long_calls) / (long_calls * 1000) for _ in range(repeats))
+        s.close()
+        out[n] = {"do_step_s": do_step, "get_all_s": get_all, "outputs": len(vrs),
+                  "get_one_s": get_one, "amortised_step_s": amortised}
+        log(f"FMU free_{n}: doStep {do_step * 1e6:.2f} us, getReal({len(vrs)}) {get_all * 1e6:.2f} us, "
+            f"getReal(1) {get_one * 1e6:.2f} us, amortised {amortised * 1e6:.2f} us/step")
+    return out
+
+
+# ----------------------------------------------------------------------------------
+# 3. accuracy of the free tumbling body, ours and MuJoCo's
+
+def free_body(scenes):
+    """Principal inertia (kg m^2) and omega0 (rad/s) of free_1's body, which starts unrotated."""
+    b = json.loads((scenes / "free_1.json").read_text())["bodies"][0]
+    return np.diag(np.array(b["inertia"])), np.array(b["angularVelocity"])
+
+
+def our_free_accuracy(fmu, folder, T, dts, repeats):
+    """Our rk4 through the FMU at each step: orientation error at T (rad) against the
+    reference and CPU seconds per simulated second (communication steps of 1 s, so the
+    FMI call is amortised as a master with coarse communication steps would have it)."""
+    rows = []
+    for dt in dts:
+        times, q = [], None
+        for r in range(repeats):
+            s = Slave(fmu, folder, {"solver.step": dt, "solver.energyGainLimit": 0.0})
+            times.append(s.steps(1.0, round(T)) / T)
+            q = s.slave.getReal([s.vars[f"b0.orientation[{i}]"].valueReference for i in range(1, 5)])
+            s.close()
+        rows.append({"dt": dt, "q_end": list(q), "s_per_simulated_s": statistics.median(times)})
+    return rows
+
+
+def add_errors(rows, q_ref):
+    for r in rows:
+        r["error_rad"] = float(rotation_angle(r["q_end"], q_ref))
+
+
+def equal_accuracy(ours, theirs):
+    """For each of MuJoCo's runs: our cheapest run whose error is at most theirs, and
+    the ratio of the times per simulated second (ours / theirs)."""
+    out = []
+    for m in theirs:
+        ok = [o for o in ours if o["error_rad"] <= m["error_rad"]]
+        best = min(ok, key=lambda o: o["s_per_simulated_s"]) if ok else None
+        out.append({"mujoco": m, "ours": best,
+                    "ratio": best["s_per_simulated_s"] / m["s_per_simulated_s"] if best else None})
+    return out
+
+
+def run_peers(scenes, folder, quick, T, dts):
+    if not PEERS_PYTHON.exists():
+        return None
+    out = pathlib.Path(folder) / "peers.json"
+    cmd = [str(PEERS_PYTHON), str(ROOT / "scripts" / "bench_peers.py"), str(scenes), str(out),
+           "--T", str(T), "--dts", ",".join(f"{d:g}" for d in dts)] + (["--quick"] if quick else [])
+    subprocess.run(cmd, check=True)
+    return json.loads(out.read_text())
+
+
+# ----------------------------------------------------------------------------------
+# 4. targets, figures, the report
+
+def slope(n1, t1, n2, t2):
+    return math.log(t2 / t1) / math.log(n2 / n1)
+
+
+def nlogn_slope(n1, n2):
+    """The log-log slope of N log N between n1 and n2: growth 'no faster than N log N'
+    means a measured slope at most this (1.18 from 100 to 1000, 1.12 from 1000 to 1e4)."""
+    return slope(n1, n1 * math.log(n1), n2, n2 * math.log(n2))
+
+
+def growth(points):
+    """[(n1, n2, slope, N log N's slope)] between consecutive counts of {n: time per step}."""
+    ns = sorted(points)
+    return [(a, b, slope(a, points[a], b, points[b]), nlogn_slope(a, b)) for a, b in zip(ns, ns[1:])]
+
+
+def targets(free, piles, peers):
+    rows = []
+    rk4 = free.get("rk4", {})
+    if 1000 in rk4:
+        v = rk4[1000]
+        rows.append(("free-body rk4 at 1000 bodies ≤ 100 ns per body-step", f"{v:.1f} ns",
+                     "PASS" if v <= RK4_TARGET_NS else "MISS"))
+    else:
+        rows.append(("free-body rk4 at 1000 bodies ≤ 100 ns per body-step", "not measured", "–"))
+    mj = {p["n"]: p for p in (peers or {}).get("piles", []) if p["integrator"] == "Euler"}
+    if 1000 in piles and 1000 in mj:
+        ratio = piles[1000]["s_per_simulated_s"] / mj[1000]["s_per_simulated_s"]
+        rows.append(("pile of 1000: time per simulated second ≤ ½ MuJoCo's",
+                     f"{piles[1000]['s_per_simulated_s']:.3g} s vs MuJoCo {mj[1000]['s_per_simulated_s']:.3g} s: "
+                     f"ratio {ratio:.2f}", "PASS" if ratio <= PILE_RATIO_TARGET else "MISS"))
+    else:
+        rows.append(("pile of 1000: time per simulated second ≤ ½ MuJoCo's",
+                     "not measured (quick run or no MuJoCo)", "–"))
+    big = max(piles) if piles else None
+    if big is not None:
+        pen = piles[big]["max_penetration_m"]
+        rows.append((f"pile of {big}: penetration ≤ 1 mm", f"{pen * 1e3:.2f} mm",
+                     "PASS" if pen <= PENETRATION_TARGET else "MISS"))
+    # time per step; free bodies from 100 up (below, the fixed cost of a step dominates)
+    for label, pts in (("free rk4", {n: v * n for n, v in rk4.items() if n >= 100}),
+                       ("piles", {n: p["total_us"] for n, p in piles.items()})):
+        for a, b, s, limit in growth(pts):
+            rows.append((f"{label}: growth {a} → {b} no faster than N log N (slope ≤ {limit:.2f})",
+                         f"slope {s:.2f}", "PASS" if s <= limit else "MISS"))
+    return rows
+
+
+def plots(out_dir, free, piles, peers):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    out_dir.mkdir(parents=True, exist_ok=True)
+    files = []
+
+    fig, ax = plt.subplots(figsize=(7, 4.8))
+    for method, pts in sorted(free.items()):
+        ns = sorted(pts)
+        bold = method == "rk4"
+        ax.loglog(ns, [pts[n] * n * 1e-3 for n in ns], "o-" if bold else ".-", lw=2.4 if bold else 1,
+                  alpha=1 if bold else 0.6, label=f"rigidfmu {method}")
+    if peers and peers.get("free"):
+        ns = [r["n"] for r in peers["free"]]
+        ax.loglog(ns, [r["us_per_step"] for r in peers["free"]], "s--k", lw=2, label=f"{peers['engine']} RK4")
+    ax.set_xlabel("free bodies N")
+    ax.set_ylabel("CPU time per step (µs)")
+    ax.set_title("Free tumbling bodies, h = 1 ms")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    files.append(out_dir / "free_bodies.png")
+    fig.savefig(files[-1], dpi=110)
+    plt.close(fig)
+
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.6))
+    ns = sorted(piles)
+    ax.loglog(ns, [piles[n]["total_us"] for n in ns], "o-", lw=2.4, label="rigidfmu (rk4)")
+    for integ, style in (("Euler", "s--k"), ("RK4", "^:k")):
+        rows = [r for r in (peers or {}).get("piles", []) if r["integrator"] == integ]
+        if rows:
+            ax.loglog([r["n"] for r in rows], [r["us_per_step"] for r in rows], style,
+                      label=f"{peers['engine']} {integ}")
+    if ns:
+        # through our largest pile, so that the slope at the top of the range compares
+        ref, top = piles[ns[-1]]["total_us"], ns[-1]
+        ax.loglog(ns, [ref * n * math.log(n) / (top * math.log(top)) for n in ns], color="grey",
+                  lw=0.8, label="∝ N log N")
+    ax.set_xlabel("cubes N")
+    ax.set_ylabel("CPU time per step (µs)")
+    ax.set_title("Piles of cubes falling on a floor, h = 2 ms")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    # shares of the step (a stacked bar on a log axis would misdraw the parts), with
+    # the total above each bar
+    bottom = np.zeros(len(ns))
+    for phase in ("broadphase", "narrowphase", "response", "integration", "other"):
+        vals = np.array([100 * max(0.0, piles[n][phase]) / piles[n]["total_us"] for n in ns])
+        bx.bar([str(n) for n in ns], vals, bottom=bottom, label=phase)
+        bottom += vals
+    for i, n in enumerate(ns):
+        bx.text(i, bottom[i] + 1, f"{piles[n]['total_us']:.0f} µs", ha="center", fontsize=8)
+    bx.set_ylim(0, 112)
+    bx.set_xlabel("cubes N")
+    bx.set_ylabel("share of the step's CPU time (%)")
+    bx.set_title("rigidfmu: where a pile's step goes")
+    bx.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+    fig.tight_layout()
+    files.append(out_dir / "piles.png")
+    fig.savefig(files[-1], dpi=110)
+    plt.close(fig)
+    return files
+
+
+def fmt_s(seconds):
+    """A duration with a readable unit."""
+    for unit, scale in (("s", 1.0), ("ms", 1e-3), ("µs", 1e-6), ("ns", 1e-9)):
+        if seconds >= scale:
+            return f"{seconds / scale:.3g} {unit}"
+    return f"{seconds / 1e-9:.3g} ns"
+
+
+def source_state():
+    """The commit measured, and whether the working tree differed from it: the figures
+    move with the code, so the report says which code it timed."""
+    try:
+        head = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], check=True,
+                              capture_output=True, text=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", str(ROOT), "status", "--porcelain", "--", "src", "fmu",
+                                "bench", "modelDescription", "CMakeLists.txt"],
+                               check=True, capture_output=True, text=True).stdout.strip()
+        return f"commit {head}" + (" with local changes to the sources" if dirty else "")
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown source state (no git)"
+
+
+def write_markdown(path, r):
+    free, piles, fmu, peers, acc, targets_rows, meta = (r["free"], r["piles"], r["fmu"], r["peers"],
+                                                       r["accuracy"], r["targets"], r["meta"])
+    L = []
+    w = L.append
+    w("# Performance\n")
+    w(f"Generated by `./scripts/bench.sh{' --quick' if meta['quick'] else ''}` "
+      f"({meta['date']}, {meta['seconds']:.0f} s, {meta['source']}). Machine: {meta['cpu']}; {meta['python']}; "
+      f"Google Benchmark {meta['benchmark_library']}{', ' + peers['engine'] if peers else ''}. "
+      "All times are **CPU times** (the machine is shared, so wall time is noisier), medians "
+      f"of {meta['repeats']}; nothing here is asserted by a test — the targets below are "
+      "printed with PASS or MISS.\n")
+    w("Scenes: `scripts/bench_scenes.py` writes them once, and the core benchmark, the FMUs "
+      "and MuJoCo run the same files. *Free*: N torque-free tumbling boxes, inertia "
+      "diag(1, 2, 3) kg m², no gravity, no collisions, h = 1 ms. *Pile*: N cubes of 0.1 m "
+      "and 1 kg (restitution 0, friction 0.6) in columns above a floor, falling for 1 s "
+      "of simulated time, h = 2 ms (MuJoCo's default timestep).\n")
+    w("![free bodies](performance/free_bodies.png)\n")
+    w("![piles](performance/piles.png)\n")
+
+    w("## Targets\n")
+    w("| target | measured | |\n|---|---|---|")
+    for label, value, status in targets_rows:
+        w(f"| {label} | {value} | **{status}** |")
+    w("")
+
+    w("## Core: free bodies (ns per body-step)\n")
+    w("`rigid-bench-core`, `BM_Free/<method>/<N>`: one world step of N bodies divided by N.\n")
+    ns = sorted({n for pts in free.values() for n in pts})
+    w("| method | " + " | ".join(f"N = {n}" for n in ns) + " |")
+    w("|---|" + "---:|" * len(ns))
+    for method in sorted(free, key=lambda m: (m != "rk4", m)):
+        w(f"| `{method}` | " + " | ".join(f"{free[method][n]:.1f}" if n in free[method] else "–" for n in ns) + " |")
+    if peers and peers.get("free"):
+        mj = {x["n"]: x for x in peers["free"]}
+        w(f"| {peers['engine']} RK4 | " + " | ".join(f"{mj[n]['ns_per_body_step']:.1f}" if n in mj else "–"
+                                                    for n in ns) + " |")
+    w("")
+
+    w("## Core: piles of cubes (µs per step)\n")
+    w("`BM_Pile/<N>`: 1 s of simulated time from the same start; the phases are "
+      "`WorldData::profile` (broadphase: poses, bounding boxes, FCL's AABB tree and candidate "
+      "pairs; narrowphase: contact points; response: impulses, friction, position correction, "
+      "landings; integration: the integrator's stages, the impact location's re-integrations "
+      "included); *other* is the rest of the step (auxiliaries, bookkeeping, clock reads). "
+      "The profile reads the wall clock: each phase is its share of the wall time applied "
+      "to the CPU time. "
+      "Penetration: the deepest overlap between cubes or below the floor seen after any step.\n")
+    w("| N | broadphase | narrowphase | response | integration | other | total per step | "
+      "per simulated second | max penetration | fastest body at 1 s |")
+    w("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for n, p in piles.items():
+        w(f"| {n} | {p['broadphase']:.1f} | {p['narrowphase']:.1f} | {p['response']:.1f} | "
+          f"{p['integration']:.1f} | {p['other']:.1f} | **{p['total_us']:.1f}** | "
+          f"{fmt_s(p['s_per_simulated_s'])} | {p['max_penetration_m'] * 1e3:.2f} mm | "
+          f"{p['max_speed_end_mps']:.3g} m/s |")
+    incomplete = [n for n, p in piles.items() if p["steps_ok"] < p["steps"]]
+    if incomplete:
+        w(f"\nA step failed in the piles of {incomplete}: their times cover the steps before it.")
+    w("")
+
+    w("## Through FMI (fmpy)\n")
+    w("`FMU2Slave` directly; free_1 and free_100 with rk4, communication step 1 ms = one "
+      "internal step per `fmi2DoStep`. *Overhead* is the FMU's time per `fmi2DoStep` minus "
+      "the core's time per step of the same scene (`BM_Free/rk4/N`); it includes fmpy's "
+      "Python-to-C call through ctypes, whose floor is the one-variable `fmi2GetReal`. "
+      "*Amortised*: `fmi2DoStep` of 1 s (1000 internal steps) per call.\n")
+    w("| bodies | fmi2DoStep (1 step) | core step | FMI overhead | fmi2GetReal, all outputs | "
+      "fmi2GetReal, 1 variable | amortised per internal step |")
+    w("|---:|---:|---:|---:|---:|---:|---:|")
+    for n, f in fmu.items():
+        w(f"| {n} | {f['do_step_s'] * 1e6:.2f} µs | {f['core_step_s'] * 1e6:.2f} µs | "
+          f"{f['overhead_s'] * 1e6:.2f} µs | {f['get_all_s'] * 1e6:.2f} µs ({f['outputs']} Reals) | "
+          f"{f['get_one_s'] * 1e6:.2f} µs | {f['amortised_step_s'] * 1e6:.2f} µs |")
+    w("")
+
+    w("## Beside MuJoCo\n")
+    if not peers:
+        w("MuJoCo was not measured in this run (no `.venv-peers`; `./scripts/bench.sh` "
+          "without `--quick` creates it).\n")
+    else:
+        w(f"{peers['engine']} from PyPI in its own venv (`.venv-peers`), run in the same "
+          "invocation by `scripts/bench_peers.py`, timed in C (`mj_step` with `nstep`, no "
+          "Python between steps), CPU time, medians.\n")
+        w("### Piles\n")
+        w("Same cubes (free-joint boxes, same size, mass, start poses, friction 0.6), a floor "
+          "plane at the surface's top face, timestep 2 ms, MuJoCo's default contact "
+          "parameters. Their penetration is the deepest `-contact.dist` after any step; "
+          "ours as above. The ratio is ours (rk4, the default) over theirs.\n")
+        w("| N | MuJoCo integrator | MuJoCo per step | MuJoCo per simulated second | MuJoCo max "
+          "penetration | MuJoCo fastest body at 1 s | ours per simulated second | our max penetration "
+          "| our fastest body at 1 s | ratio ours/theirs |")
+        w("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+        for m in peers["piles"]:
+            o = piles.get(m["n"])
+            if o is None:
+                continue
+            w(f"| {m['n']} | {m['integrator']} | {m['us_per_step']:.1f} µs | {fmt_s(m['s_per_simulated_s'])} | "
+              f"{m['max_penetration_m'] * 1e3:.2f} mm | {m['max_speed_end']:.3g} m/s | "
+              f"{fmt_s(o['s_per_simulated_s'])} | {o['max_penetration_m'] * 1e3:.2f} mm | "
+              f"{o['max_speed_end_mps']:.3g} m/s | **{o['s_per_simulated_s'] / m['s_per_simulated_s']:.2f}** |")
+        w("")
+        w("### A free tumbling body, at equal accuracy\n")
+        w(f"The body of free_1 (inertia diag(1, 2, 3) kg m², ω₀ = {acc['omega0']} rad/s), "
+          f"T = {acc['T']:g} s; error = rotation angle between the orientation at T and the "
+          "reference (scipy DOP853 at rtol 1e-12 on Euler's equations, "
+          "`report_accuracy.torque_free_reference`). Ours: rk4 through the FMU with "
+          "communication steps of 1 s.\n")
+        w("| engine, method | step | error at T | CPU per simulated second |")
+        w("|---|---:|---:|---:|")
+        for o in acc["ours"]:
+            w(f"| rigidfmu rk4 (FMU) | {o['dt']:g} | {o['error_rad']:.2g} rad | {fmt_s(o['s_per_simulated_s'])} |")
+        for m in acc["mujoco"]:
+            w(f"| {peers['engine']} {m['integrator']} | {m['dt']:g} | {m['error_rad']:.2g} rad | "
+              f"{fmt_s(m['s_per_simulated_s'])} |")
+        w("\nRatio at equal or better accuracy: for each MuJoCo run, our cheapest run whose "
+          "error is at most MuJoCo's.\n")
+        w("| MuJoCo run | its error | our run | our error | ratio ours/theirs |")
+        w("|---|---:|---|---:|---:|")
+        for e in acc["equal_accuracy"]:
+            m, o = e["mujoco"], e["ours"]
+            w(f"| {m['integrator']}, dt {m['dt']:g} | {m['error_rad']:.2g} rad | " +
+              (f"rk4, h {o['dt']:g} | {o['error_rad']:.2g} rad | **{e['ratio']:.3f}** |" if o else
+               "none of our steps reaches it | – | – |"))
+        w("")
+    w("## How it is measured\n")
+    w("- `./scripts/bench.sh` (`--quick`: fewer repeats, no 10000 free bodies, no pile of 1000; "
+      "the test suite runs it and checks that the report is complete, never the times).")
+    w("- Core: Google Benchmark, CPU time; free bodies: repetitions with the median "
+      "aggregate; piles: one simulated second per repetition (the same start each time), "
+      "the penetration probe outside the timed region.")
+    w("- FMU: `time.process_time` around loops of fmpy calls; warm-up calls first.")
+    w("- MuJoCo: `time.process_time` around `mj_step(m, d, nstep)`; penetration and "
+      "contacts from a separate, untimed run.")
+    w("- Raw figures: `performance/bench.json`.")
+    path.write_text("\n".join(L) + "\n")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--quick", action="store_true", help="short runs (for the test suite)")
+    p.add_argument("--out", default=str(ROOT / "docs"), help="writes OUT/performance.md and OUT/performance/")
+    p.add_argument("--build", default=os.environ.get("RIGIDFMU_BUILD", str(ROOT / "build")))
+    args = p.parse_args()
+    t_start = time.perf_counter()
+    build = pathlib.Path(args.build).resolve()
+    out = pathlib.Path(args.out).resolve()
+    if not (build / "rigid-bench-core").exists():
+        sys.exit(f"bench: no {build / 'rigid-bench-core'} (install libbenchmark-dev and build; "
+                 "scripts/bench.sh does both)")
+    scenes = build / "bench-scenes"
+    bench_scenes.write(scenes)
+    repeats = 3 if args.quick else 7
+    T = 2.0 if args.quick else 10.0
+    mj_dts = (1e-2, 1e-3)
+    our_dts = (1e-2, 1e-3) if args.quick else (1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2.5e-4)
+
+    log("== core (rigid-bench-core)")
+    core, context = run_core(build, scenes, args.quick)
+    free, piles = free_table(core), pile_table(core)
+
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = pathlib.Path(tmp)
+        log("== FMU (fmpy)")
+        fmus = build_fmus(build, scenes, ["free_1", "free_100"], folder)
+        fmu = fmu_bench({1: fmus["free_1"], 100: fmus["free_100"]}, folder, args.quick)
+        for n, f in fmu.items():
+            f["core_step_s"] = free["rk4"][n] * n * 1e-9
+            f["overhead_s"] = f["do_step_s"] - f["core_step_s"]
+        log("== accuracy of a free tumbling body (ours)")
+        inertia, omega0 = free_body(scenes)
+        q_ref = torque_free_reference(inertia, omega0, T)
+        ours = our_free_accuracy(fmus["free_1"], folder, T, our_dts, repeats)
+        add_errors(ours, q_ref)
+        for o in ours:
+            log(f"rigidfmu rk4 h={o['dt']:g}: error {o['error_rad']:.3g} rad, "
+                f"{o['s_per_simulated_s'] * 1e3:.3f} ms per simulated s")
+        log("== MuJoCo (.venv-peers)")
+        peers = run_peers(scenes, folder, args.quick, T, mj_dts)
+    if peers is None:
+        log("MuJoCo: not measured (no .venv-peers; scripts/bench.sh without --quick creates it)")
+    accuracy = {"T": T, "omega0": [float(x) for x in omega0], "ours": ours, "mujoco": [], "equal_accuracy": []}
+    if peers:
+        add_errors(peers["free_one"], q_ref)
+        accuracy["mujoco"] = peers["free_one"]
+        accuracy["equal_accuracy"] = equal_accuracy(ours, [m for m in peers["free_one"] if m["integrator"] == "RK4"])
+
+    rows = targets(free, piles, peers)
+    meta = {"quick": args.quick, "date": time.strftime("%Y-%m-%d %H:%M %Z"), "cpu": cpu_name(),
+            "python": f"Python {platform.python_version()}", "repeats": repeats,
+            "benchmark_library": f"1.7 ({context.get('library_build_type', '?')} build, Debian)",
+            "load_avg": context.get("load_avg"), "source": source_state(),
+            "seconds": time.perf_counter() - t_start}
+    report = {"free": free, "piles": piles, "fmu": fmu, "peers": peers, "accuracy": accuracy,
+              "targets": rows, "meta": meta}
+    fig_dir = out / "performance"
+    files = plots(fig_dir, free, piles, peers)
+    (fig_dir / "bench.json").write_text(json.dumps(report, indent=1, default=float))
+    write_markdown(out / "performance.md", report)
+
+    log("\n== targets (figures, never asserted)")
+    for label, value, status in rows:
+        log(f"  {status:5s} {label}: {value}")
+    if peers:
+        mj = {m["n"]: m for m in peers["piles"] if m["integrator"] == "Euler"}
+        for n in piles:
+            if n in mj:
+                log(f"  pile {n}: ours/MuJoCo Euler per simulated second = "
+                    f"{piles[n]['s_per_simulated_s'] / mj[n]['s_per_simulated_s']:.2f}")
+        for e in accuracy["equal_accuracy"]:
+            m = e["mujoco"]
+            log(f"  free body vs MuJoCo RK4 dt {m['dt']:g} ({m['error_rad']:.2g} rad): " +
+                (f"ours rk4 h {e['ours']['dt']:g} ({e['ours']['error_rad']:.2g} rad), ratio {e['ratio']:.3f}"
+                 if e["ours"] else "no run of ours as accurate"))
+    log(f"wrote {out / 'performance.md'}, {', '.join(str(f) for f in files)} "
+        f"({time.perf_counter() - t_start:.0f} s)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# scripts/bench.sh [--quick] [--out DIR]
+# The performance report (scripts/bench.py): builds the core and its Google Benchmark
+# (rigid-bench-core) like build_fmu.sh (in build/, or $RIGIDFMU_BUILD), makes sure the
+# peers' venv (.venv-peers, MuJoCo) is there, then runs the core, FMU and MuJoCo
+# benchmarks in one run. Default: writes docs/performance.md and docs/performance/.
+# --quick: short runs for the test suite (no 10000 free bodies, no pile of 1000, and
+# MuJoCo only if .venv-peers already exists, since installing it is slow).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+[ -n "${RIGIDFMU_SKIP_SETUP:-}" ] || "$root/scripts/setup.sh"
+build="${RIGIDFMU_BUILD:-$root/build}"
+. "$root/scripts/ensure_build.sh"
+# ensure_build.sh builds the FMU binaries; the benchmark target exists only when CMake
+# found Google Benchmark (libbenchmark-dev, installed by setup.sh), so a build tree
+# configured before it was installed is configured again once
+if ! "$cmake_bin" --build "$build" -j"$(nproc)" --target rigid-bench-core >/dev/null 2>&1; then
+  "$cmake_bin" -S "$root" -B "$build" >/dev/null
+  "$cmake_bin" --build "$build" -j"$(nproc)" --target rigid-bench-core >/dev/null || {
+    echo "bench: cannot build rigid-bench-core (is libbenchmark-dev installed? scripts/setup.sh)" >&2
+    exit 1; }
+fi
+case " $* " in
+  *" --quick "*) ;;
+  # peers.sh creates or updates .venv-peers before it runs peers.py; with --help that
+  # is all it does (one place knows how the peers' venv is made)
+  *) RIGIDFMU_SKIP_SETUP=1 "$root/scripts/peers.sh" --help >/dev/null ;;
+esac
+exec "$root/.venv/bin/python" "$root/scripts/bench.py" --build "$build" "$@"

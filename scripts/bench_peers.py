@@ -1,0 +1,195 @@
+"""MuJoCo on the benchmark scenes of scripts/bench_scenes.py, run by scripts/bench.py in
+the peers' own venv (.venv-peers, scripts/peers.sh's pattern) and read back as JSON.
+
+- Piles: each pile_<N>.json converted to MJCF (free-joint boxes of the same size, mass,
+  friction and start poses, a floor plane at the surface's top face, the scene's step
+  2 ms), stepped 1 simulated second with MuJoCo's default Euler integrator (and RK4 where
+  cheap): CPU time per step (median of the repeats, mj_step with nstep so that no Python
+  runs between steps), and, in a separate untimed run, the deepest penetration
+  (max over steps and contacts of -contact.dist).
+- Free bodies: the free_<N>.json bodies (inertia diag(1, 2, 3), no gravity) with RK4 at
+  the scene's step, CPU time per step for N = 1 .. 1000; and the first body alone with
+  RK4 (and Euler) at the given steps for T seconds, its final orientation returned so
+  that bench.py measures its error against the same reference as ours.
+
+usage: bench_peers.py SCENES_DIR OUT.json [--quick] [--T 10] [--dts 1e-2,1e-3]"""
+import argparse
+import json
+import pathlib
+import statistics
+import time
+
+import mujoco
+import numpy as np
+
+# Our cubes do not bounce (restitution 0); MuJoCo's default contact (solref 0.02,
+# dampratio 1) is critically damped, which is its own way of saying the same.
+PILE_MJCF = """<mujoco model="{name}">
+  <option timestep="{dt}" gravity="{g}" integrator="{integrator}"/>
+  <size memory="{memory}"/>
+  <worldbody>
+    <geom name="floor" type="plane" size="{half} {half} 0.1" pos="{floor}" friction="{mu} 0.005 0.0001"/>
+{bodies}
+  </worldbody>
+</mujoco>"""
+
+BODY = ('    <body pos="{p}" quat="{q}"><freejoint/>'
+        '<geom type="box" size="{s}" mass="{m}" friction="{mu} 0.005 0.0001"/></body>')
+
+FREE_MJCF = """<mujoco>
+  <option gravity="0 0 0" timestep="{dt}" integrator="{integrator}"/>
+  <size memory="{memory}"/>
+  <worldbody>
+{bodies}
+  </worldbody>
+</mujoco>"""
+
+FREE_BODY = ('    <body pos="{p}"><freejoint/>'
+             '<inertial pos="0 0 0" mass="{m}" diaginertia="{I}"/></body>')
+
+
+def fmt(v):
+    return " ".join(f"{x:.17g}" for x in v)
+
+
+def memory_for(n):
+    """MuJoCo's arena: its default (about 1 MB here) overflows at hundreds of boxes in
+    contact; a few hundred kB per body is plenty for a pile."""
+    return f"{max(16, n // 2)}M"
+
+
+def pile_xml(scene, integrator):
+    surface = scene["surfaces"][0]
+    lo, hi = np.array(surface["min"]), np.array(surface["max"])
+    mu = surface.get("staticFriction", 0.6)
+    bodies = []
+    for b in scene["bodies"]:
+        assert b["shape"]["type"] == "box"
+        bodies.append(BODY.format(p=fmt(b["position"]), q=fmt(b.get("orientation", [1, 0, 0, 0])),
+                                  s=fmt(0.5 * np.array(b["shape"]["size"])), m=b["mass"],
+                                  # MuJoCo takes the larger friction of the pair, we the geometric
+                                  # mean: equal values give the same coefficient in both
+                                  mu=b.get("staticFriction", 0.6)))
+    centre = 0.5 * (lo + hi)
+    return PILE_MJCF.format(name=scene["name"], dt=scene["solver"]["step"], g=fmt(scene["gravity"]),
+                            integrator=integrator, memory=memory_for(len(bodies)),
+                            half=0.5 * float(max(hi[0] - lo[0], hi[1] - lo[1])),
+                            floor=fmt([centre[0], centre[1], hi[2]]), mu=mu, bodies="\n".join(bodies))
+
+
+def free_xml(scene, integrator, dt, count=None):
+    bodies = [FREE_BODY.format(p=fmt(b["position"]), m=b["mass"],
+                               I=fmt(np.diag(np.array(b["inertia"]))))
+              for b in scene["bodies"][:count]]
+    return FREE_MJCF.format(dt=dt, integrator=integrator, memory=memory_for(len(bodies)),
+                            bodies="\n".join(bodies))
+
+
+def set_spins(model, data, scene, count=None):
+    """Our angularVelocity is in the world frame; a free joint's is in the body frame,
+    which is the world frame at t = 0 (every body starts unrotated)."""
+    for i, b in enumerate(scene["bodies"][:count]):
+        assert b.get("orientation", [1, 0, 0, 0]) == [1, 0, 0, 0]
+        data.qvel[6 * i + 3:6 * i + 6] = b["angularVelocity"]
+
+
+def cpu_per_step(model, start, steps, repeats):
+    """Median over repeats of the CPU seconds per mj_step, each repeat from `start`."""
+    times = []
+    for _ in range(repeats):
+        data = start()
+        t0 = time.process_time()
+        mujoco.mj_step(model, data, nstep=steps)
+        times.append((time.process_time() - t0) / steps)
+    return statistics.median(times)
+
+
+def pile(scene, integrator, repeats):
+    model = mujoco.MjModel.from_xml_string(pile_xml(scene, integrator))
+    dt = model.opt.timestep
+    steps = round(1.0 / dt)
+    # untimed: penetration after every step (what our benchmark records too)
+    data = mujoco.MjData(model)
+    deepest, contacts, warnings = 0.0, 0, 0
+    for _ in range(steps):
+        mujoco.mj_step(model, data)
+        if data.ncon:
+            deepest = max(deepest, float(-np.min(data.contact.dist[:data.ncon])))
+            contacts = max(contacts, int(data.ncon))
+    warnings = int(sum(w.number for w in data.warning))
+    per_step = cpu_per_step(model, lambda: mujoco.MjData(model), steps, repeats)
+    return {"n": len(scene["bodies"]), "integrator": integrator, "dt": dt, "steps": steps,
+            "us_per_step": per_step * 1e6, "s_per_simulated_s": per_step / dt,
+            "max_penetration_m": deepest, "max_contacts": contacts, "warnings": warnings,
+            # how settled the pile is at 1 s: the fastest body's speed (m/s)
+            "max_speed_end": float(np.max(np.linalg.norm(data.qvel.reshape(-1, 6)[:, :3], axis=1)))}
+
+
+def free_many(scene, dt, repeats):
+    model = mujoco.MjModel.from_xml_string(free_xml(scene, "RK4", dt))
+
+    def start():
+        data = mujoco.MjData(model)
+        set_spins(model, data, scene)
+        return data
+    steps = max(20, min(2000, round(2e5 / len(scene["bodies"]))))
+    per_step = cpu_per_step(model, start, steps, repeats)
+    n = len(scene["bodies"])
+    return {"n": n, "integrator": "RK4", "dt": dt, "us_per_step": per_step * 1e6,
+            "ns_per_body_step": per_step * 1e9 / n}
+
+
+def free_one(scene, integrator, dt, T, repeats):
+    model = mujoco.MjModel.from_xml_string(free_xml(scene, integrator, dt, count=1))
+
+    def start():
+        data = mujoco.MjData(model)
+        set_spins(model, data, scene, count=1)
+        return data
+    steps = round(T / dt)
+    data = start()
+    mujoco.mj_step(model, data, nstep=steps)
+    per_step = cpu_per_step(model, start, steps, repeats)
+    return {"integrator": integrator, "dt": dt, "T": T, "q_end": [float(x) for x in data.qpos[3:7]],
+            "us_per_step": per_step * 1e6, "s_per_simulated_s": per_step / dt}
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("scenes")
+    p.add_argument("out")
+    p.add_argument("--quick", action="store_true")
+    p.add_argument("--T", type=float, default=10.0)
+    p.add_argument("--dts", default="1e-2,1e-3")
+    args = p.parse_args()
+    d = pathlib.Path(args.scenes)
+    load = lambda name: json.loads((d / name).read_text())  # noqa: E731
+    repeats = 3 if args.quick else 5
+    pile_counts = (10, 100) if args.quick else (10, 100, 1000)
+    free_counts = (1, 10, 100) if args.quick else (1, 10, 100, 1000)
+    out = {"engine": f"MuJoCo {mujoco.__version__}", "piles": [], "free": [], "free_one": []}
+    for n in pile_counts:
+        scene = load(f"pile_{n}.json")
+        # RK4 at 1000 cubes would take minutes per repeat; their default (Euler) is what
+        # the issue's figures use
+        for integrator in ("Euler", "RK4") if n <= 100 else ("Euler",):
+            r = pile(scene, integrator, 1 if n >= 1000 else repeats)
+            out["piles"].append(r)
+            print(f"MuJoCo pile {n:5d} {integrator:5s}: {r['us_per_step']:9.1f} us/step, "
+                  f"penetration {r['max_penetration_m'] * 1e3:.2f} mm", flush=True)
+    for n in free_counts:
+        scene = load(f"free_{n}.json")
+        r = free_many(scene, scene["solver"]["step"], repeats)
+        out["free"].append(r)
+        print(f"MuJoCo free {n:5d} RK4: {r['ns_per_body_step']:9.1f} ns/body-step", flush=True)
+    scene = load("free_1.json")
+    for dt in (float(x) for x in args.dts.split(",")):
+        for integrator in ("RK4", "Euler"):
+            r = free_one(scene, integrator, dt, args.T, repeats)
+            out["free_one"].append(r)
+            print(f"MuJoCo free body {integrator:5s} dt={dt:g}: {r['us_per_step']:.2f} us/step", flush=True)
+    pathlib.Path(args.out).write_text(json.dumps(out, indent=1))
+
+
+if __name__ == "__main__":
+    main()

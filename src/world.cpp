@@ -95,15 +95,14 @@ void normaliseOrientations(std::vector<BodyState>& Y) {
   for (BodyState& y : Y) y.q.normalize();
 }
 
-// Contact response: what happens at an instant rather than over the step. The
-// surfaces need the applied force at the new state to tell whether static friction
-// holds a body that has come to rest.
 // The distance within which bodies count as touching (m): contacts are detected with
 // this margin, so that a body resting on another is answered even with a tiny gap.
 constexpr double kContactMargin = 1e-6;
 
-// `detected`: the collision cache already holds the contacts of `after` (with the
-// margin), so they are not detected again.
+// Contact response: what happens at an instant rather than over the step. The
+// surfaces need the applied force at the new state to tell whether static friction
+// holds a body that has come to rest. `detected`: the collision cache already holds
+// the contacts of `after` (with the margin), so they are not detected again.
 [[maybe_unused]] void respondToContacts(const WorldModel& model, WorldData& data, double h,
                        std::vector<BodyState>& after, bool detected) {
   std::fill(data.contacts.begin(), data.contacts.end(), 0);

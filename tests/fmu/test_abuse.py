@@ -35,7 +35,6 @@ TESTS = pathlib.Path(__file__).resolve().parent
 ROOT = TESTS.parents[1]
 SCENE_DIR = ROOT / "scripts" / "scenes"
 EXAMPLES = ["default.json", "spinner.json", "tumble.json"]
-FULL = os.environ.get("RIGIDFMU_FULL") == "1"
 # Set by scripts/sanitize.sh: the FMUs are the ASan/UBSan build and the runtimes are
 # preloaded (LD_PRELOAD) into this process and its children.
 SANITIZED = os.environ.get("RIGIDFMU_SANITIZED") == "1"
@@ -961,10 +960,8 @@ LD_SO_SUPPRESSION = """
 }
 """
 
-# Under valgrind a cycle of the Playground costs ~0.1 s, so the default is 100 cycles
-# (enough: a leak per cycle shows as definitely lost either way); RIGIDFMU_FULL=1 runs
-# the 1000 cycles of the issue.
-VALGRIND_CYCLES = 1000 if FULL else 100
+# The issue's 1000 cycles, under valgrind too (~0.1 s a cycle for the Playground).
+VALGRIND_CYCLES = 1000
 
 
 @pytest.mark.skipif(not shutil.which("valgrind"), reason="valgrind is not on PATH")
@@ -979,7 +976,7 @@ def test_no_leaks_and_no_invalid_accesses_under_valgrind(fmu_of, driver, scene_f
     cmd = ["valgrind", "--leak-check=full", "--errors-for-leak-kinds=definite",
            "--error-exitcode=99", f"--suppressions={supp}", f"--log-file={log}", str(driver)]
     p = subprocess.run(cmd + driver_args(fmu, unzip) + [str(VALGRIND_CYCLES)],
-                       capture_output=True, text=True, timeout=600 if FULL else 120)
+                       capture_output=True, text=True, timeout=900)
     report = log.read_text(errors="replace") if log.exists() else ""
     assert p.returncode == 0, (f"exit code {p.returncode} (99: valgrind found errors)\n"
                                f"{p.stdout}{p.stderr}\n{report[-6000:]}")

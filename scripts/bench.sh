@@ -22,8 +22,6 @@ if ! "$cmake_bin" --build "$build" -j"$(nproc)" --target rigid-bench-core >/dev/
 fi
 case " $* " in
   *" --quick "*) ;;
-  # peers.sh creates or updates .venv-peers before it runs peers.py; with --help that
-  # is all it does (one place knows how the peers' venv is made)
-  *) RIGIDFMU_SKIP_SETUP=1 "$root/scripts/peers.sh" --help >/dev/null ;;
+  *) . "$root/scripts/peers_venv.sh" ;;
 esac
 exec "$root/.venv/bin/python" "$root/scripts/bench.py" --build "$build" "$@"

@@ -1,5 +1,5 @@
 """MuJoCo on the benchmark scenes of scripts/bench_scenes.py, run by scripts/bench.py in
-the peers' own venv (.venv-peers, scripts/peers.sh's pattern) and read back as JSON.
+the peers' own venv (.venv-peers, made by scripts/peers_venv.sh) and read back as JSON.
 
 - Piles: each pile_<N>.json converted to MJCF (free-joint boxes of the same size, mass,
   friction and start poses, a floor plane at the surface's top face, the scene's step

@@ -7,12 +7,5 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 [ -n "${RIGIDFMU_SKIP_SETUP:-}" ] || "$root/scripts/setup.sh"
-venv="$root/.venv-peers"
-stamp="$venv/.requirements.sha256"
-want="$(sha256sum "$root/scripts/peers-requirements.txt" | cut -d' ' -f1)"
-if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
-  python3 -m venv "$venv"
-  "$venv/bin/pip" install -q --disable-pip-version-check -r "$root/scripts/peers-requirements.txt"
-  echo "$want" > "$stamp"
-fi
-exec "$venv/bin/python" "$root/scripts/peers.py" "$@"
+. "$root/scripts/peers_venv.sh"
+exec "$peers_venv/bin/python" "$root/scripts/peers.py" "$@"

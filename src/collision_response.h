@@ -16,7 +16,6 @@ struct CollisionCache {
   std::vector<double> halfThickness;    // m, per body (0 for bodies that do not collide)
   std::vector<double> boundingRadius;   // m, per body (0 for bodies that do not collide)
   std::vector<double> travel;           // m, scratch: each body's reach in a step
-  std::vector<size_t> order;            // scratch: colliding bodies sorted for sweep and prune
 };
 
 // Half the smallest dimension of a shape (m): how far a body may move between two

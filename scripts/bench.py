@@ -114,6 +114,7 @@ def pile_table(core):
                            s_per_simulated_s=cpu / b["sim_seconds"] if steps else math.nan,
                            steps_ok=steps, steps=round(b["sim_seconds"] / bench_scenes.PILE_STEP),
                            max_penetration_m=b["max_penetration_m"],
+                           max_overlap_state_m=b.get("max_overlap_state_m", math.nan),
                            max_speed_end_mps=b.get("max_speed_end_mps", math.nan))
     return dict(sorted(out.items()))
 
@@ -294,9 +295,12 @@ def targets(free, piles, peers):
                      "not measured (quick run or no MuJoCo)", "–"))
     big = max(piles) if piles else None
     if big is not None:
+        # judged on the worse of the two measures (see the piles table)
         pen = piles[big]["max_penetration_m"]
-        rows.append((f"pile of {big}: penetration ≤ 1 mm", f"{pen * 1e3:.2f} mm",
-                     "PASS" if pen <= PENETRATION_TARGET else "MISS"))
+        state = piles[big]["max_overlap_state_m"]
+        rows.append((f"pile of {big}: penetration ≤ 1 mm",
+                     f"{pen * 1e3:.2f} mm before the response, {state * 1e3:.2f} mm in the output state",
+                     "PASS" if max(pen, state) <= PENETRATION_TARGET else "MISS"))
     # time per step; free bodies from 100 up (below, the fixed cost of a step dominates)
     for label, pts in (("free rk4", {n: v * n for n, v in rk4.items() if n >= 100}),
                        ("piles", {n: p["total_us"] for n, p in piles.items()})):
@@ -440,15 +444,19 @@ def write_markdown(path, r):
       "included); *other* is the rest of the step (auxiliaries, bookkeeping, clock reads). "
       "The profile reads the wall clock: each phase is its share of the wall time applied "
       "to the CPU time. "
-      "Penetration: the deepest overlap between cubes or below the floor seen after any step.\n")
+      "Penetration: the deepest overlap between cubes or below the floor, over all steps: "
+      "*before the response* as the step's own last detection found it (before the position "
+      "correction), and *in the output state*, detected afresh in the state the step hands "
+      "back (what the FMU outputs; MuJoCo's `-contact.dist` is of its state too).\n")
     w("| N | broadphase | narrowphase | response | integration | other | total per step | "
-      "per simulated second | max penetration | fastest body at 1 s |")
-    w("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+      "per simulated second | max penetration before the response | in the output state | "
+      "fastest body at 1 s |")
+    w("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for n, p in piles.items():
         w(f"| {n} | {p['broadphase']:.1f} | {p['narrowphase']:.1f} | {p['response']:.1f} | "
           f"{p['integration']:.1f} | {p['other']:.1f} | **{p['total_us']:.1f}** | "
           f"{fmt_s(p['s_per_simulated_s'])} | {p['max_penetration_m'] * 1e3:.2f} mm | "
-          f"{p['max_speed_end_mps']:.3g} m/s |")
+          f"{p['max_overlap_state_m'] * 1e3:.2f} mm | {p['max_speed_end_mps']:.3g} m/s |")
     incomplete = [n for n, p in piles.items() if p["steps_ok"] < p["steps"]]
     if incomplete:
         w(f"\nA step failed in the piles of {incomplete}: their times cover the steps before it.")
@@ -481,7 +489,8 @@ def write_markdown(path, r):
         w("Same cubes (free-joint boxes, same size, mass, start poses, friction 0.6), a floor "
           "plane at the surface's top face, timestep 2 ms, MuJoCo's default contact "
           "parameters. Their penetration is the deepest `-contact.dist` after any step; "
-          "ours as above. The ratio is ours (rk4, the default) over theirs.\n")
+          "ours is the overlap in the output state (above). The ratio is ours (rk4, the "
+          "default) over theirs.\n")
         w("| N | MuJoCo integrator | MuJoCo per step | MuJoCo per simulated second | MuJoCo max "
           "penetration | MuJoCo fastest body at 1 s | ours per simulated second | our max penetration "
           "| our fastest body at 1 s | ratio ours/theirs |")
@@ -492,7 +501,7 @@ def write_markdown(path, r):
                 continue
             w(f"| {m['n']} | {m['integrator']} | {m['us_per_step']:.1f} µs | {fmt_s(m['s_per_simulated_s'])} | "
               f"{m['max_penetration_m'] * 1e3:.2f} mm | {m['max_speed_end']:.3g} m/s | "
-              f"{fmt_s(o['s_per_simulated_s'])} | {o['max_penetration_m'] * 1e3:.2f} mm | "
+              f"{fmt_s(o['s_per_simulated_s'])} | {o['max_overlap_state_m'] * 1e3:.2f} mm | "
               f"{o['max_speed_end_mps']:.3g} m/s | **{o['s_per_simulated_s'] / m['s_per_simulated_s']:.2f}** |")
         w("")
         w("### A free tumbling body, at equal accuracy\n")

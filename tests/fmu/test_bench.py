@@ -51,6 +51,7 @@ def test_core_piles_split_into_phases(quick):
         assert math.isclose(sum(p[k] for k in PHASES) + p["other"], p["total_us"], rel_tol=1e-9)
         assert p["steps_ok"] == p["steps"], f"pile {n}: a step failed"
         assert math.isfinite(p["max_penetration_m"]) and p["max_penetration_m"] >= 0
+        assert math.isfinite(p["max_overlap_state_m"]) and p["max_overlap_state_m"] >= 0
 
 
 def test_fmu_costs_and_overhead(quick):

@@ -32,7 +32,8 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import bench_scenes  # noqa: E402
 from quaternion import rotation_angle  # noqa: E402
-from report_accuracy import cpu_name, torque_free_reference  # noqa: E402
+from report_accuracy import cpu_name  # noqa: E402
+from torque_free import torque_free_reference  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 PEERS_PYTHON = ROOT / ".venv-peers" / "bin" / "python"
@@ -508,7 +509,7 @@ def write_markdown(path, r):
         w(f"The body of free_1 (inertia diag(1, 2, 3) kg m², ω₀ = {acc['omega0']} rad/s), "
           f"T = {acc['T']:g} s; error = rotation angle between the orientation at T and the "
           "reference (scipy DOP853 at rtol 1e-12 on Euler's equations, "
-          "`report_accuracy.torque_free_reference`). Ours: rk4 through the FMU with "
+          "`torque_free.torque_free_reference`). Ours: rk4 through the FMU with "
           "communication steps of 1 s.\n")
         w("| engine, method | step | error at T | CPU per simulated second |")
         w("|---|---:|---:|---:|")

@@ -14,37 +14,16 @@ import time
 
 import mujoco
 import numpy as np
-from scipy.integrate import solve_ivp
-from quaternion import quat_mul, rotation_angle as angle  # noqa: E402
+from mujoco_free_body import free_body_model  # noqa: E402
+from quaternion import rotation_angle as angle  # noqa: E402
+from torque_free import torque_free_reference  # noqa: E402
 
 I = np.array([1.0, 2.0, 3.0])
 W0 = np.array([0.01, 5.0, 0.01])
 T = 20.0
 
-MJCF = """
-<mujoco>
-  <option gravity="0 0 0" timestep="{dt}" integrator="{integrator}"/>
-  <worldbody>
-    <body name="spinner">
-      <freejoint/>
-      <inertial pos="0 0 0" mass="1" diaginertia="1 2 3"/>
-    </body>
-  </worldbody>
-</mujoco>
-"""
-
-
-def reference():
-    def rhs(t, y):
-        w, q = y[:3], y[3:]
-        return np.r_[np.cross(I * w, w) / I, 0.5 * quat_mul(q, np.r_[0.0, w])]
-    sol = solve_ivp(rhs, (0, T), np.r_[W0, 1, 0, 0, 0], method="DOP853", rtol=1e-12, atol=1e-14)
-    q = sol.y[3:, -1]
-    return q / np.linalg.norm(q)
-
-
 def run(integrator, dt):
-    model = mujoco.MjModel.from_xml_string(MJCF.format(dt=dt, integrator=integrator))
+    model = free_body_model(I, dt, integrator)
     data = mujoco.MjData(model)
     data.qvel[3:6] = W0  # a free joint's angular velocity is in the body frame (= world at t = 0)
     n = round(T / dt)
@@ -60,7 +39,7 @@ def main():
     p.add_argument("--quick", action="store_true")
     p.add_argument("--out", default=str(pathlib.Path(__file__).resolve().parents[1] / "docs" / "peers.json"))
     args = p.parse_args()
-    q_ref = reference()
+    q_ref = torque_free_reference(I, W0, T)
     rows = []
     steps = (1e-2, 1e-3) if not args.quick else (1e-2,)
     repeats = 1 if args.quick else 5

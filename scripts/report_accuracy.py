@@ -38,8 +38,8 @@ import tempfile
 import time
 
 import numpy as np
-from scipy.integrate import solve_ivp
 from heave import heave  # noqa: E402
+from torque_free import torque_free_reference  # noqa: E402
 from quaternion import quat_axis_angle, quat_mul, rotation_angle  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
@@ -64,21 +64,6 @@ SPIN_STEPS = {1: 8, 2: 4}  # the spins (omega up to 5 rad/s) need 8x finer steps
 
 # ----------------------------------------------------------------------------------
 # quaternions and independent references
-
-def torque_free_reference(inertia, omega0, T):
-    """Euler's equations in the body frame and q' = 1/2 q (0, omega_body), identity
-    orientation at t = 0 (so omega0 is also the body-frame value), DOP853 at rtol 1e-12."""
-    I = np.asarray(inertia, dtype=float)
-
-    def rhs(t, y):
-        w, q = y[:3], y[3:]
-        return np.r_[np.cross(I * w, w) / I, 0.5 * quat_mul(q, np.r_[0.0, w])]
-
-    sol = solve_ivp(rhs, (0.0, T), np.r_[omega0, 1.0, 0, 0, 0], method="DOP853",
-                    rtol=1e-12, atol=1e-14)
-    q = sol.y[3:, -1]
-    return q / np.linalg.norm(q)
-
 
 def symmetric_top_closed_form(I1, I3, omega0, T):
     """Torque-free symmetric top (I1 = I2), identity orientation at 0: regular precession,

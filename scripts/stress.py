@@ -49,9 +49,9 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
-from scipy.integrate import solve_ivp
 from heave import heave  # noqa: E402
 from quaternion import quat_axis_angle, quat_mul, rotation_angle  # noqa: E402
+from torque_free import torque_free_reference  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 CMAKE = "/usr/bin/cmake"
@@ -90,19 +90,6 @@ def symmetric_top(inertia, omega0, t):
     e = np.zeros(3)
     e[a] = 1.0
     return quat_mul(quat_axis_angle(L, np.linalg.norm(L) * t / Ip), quat_axis_angle(e, -Omega * t))
-
-
-def torque_free_dop853(inertia, omega0, T):
-    I = np.asarray(inertia, dtype=float)
-
-    def rhs(t, y):
-        w, q = y[:3], y[3:]
-        return np.r_[np.cross(I * w, w) / I, 0.5 * quat_mul(q, np.r_[0.0, w])]
-
-    sol = solve_ivp(rhs, (0.0, T), np.r_[omega0, 1.0, 0, 0, 0], method="DOP853",
-                    rtol=1e-12, atol=1e-14)
-    q = sol.y[3:, -1]
-    return q / np.linalg.norm(q)
 
 
 _HEAVE_CACHE = {}
@@ -522,7 +509,7 @@ def cases(quick, methods):
         def f(t):
             key = (I, w, round(t, 9))
             if key not in ref_cache:
-                ref_cache[key] = torque_free_dop853(I, w, t)
+                ref_cache[key] = torque_free_reference(I, w, t)
             return ref_cache[key]
         return f
     out.append(spin_case("tumbling-intermediate", f"intermediate-axis tumbling, I = (1, 2, 3), ω0 = (0.01, 5, 0.01) rad/s, h = 1e-3 s, {Tt:g} s",

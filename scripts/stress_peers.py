@@ -16,7 +16,8 @@ import time
 
 import mujoco
 import numpy as np
-from quaternion import quat_mul, rotation_angle as angle  # noqa: E402
+from mujoco_free_body import free_body_model  # noqa: E402
+from quaternion import quat_axis_angle, quat_mul, rotation_angle as angle  # noqa: E402
 
 I = np.array([2.0, 2.0, 3.0])
 H = 1e-2
@@ -27,32 +28,15 @@ INTEGRATORS = ("Euler", "RK4", "implicit")
 BESIDE = {"Euler": ("euler", "symplecticEuler"), "RK4": ("rk4", "lieRk4"),
           "implicit": ("rosenbrock",)}
 
-MJCF = """
-<mujoco>
-  <option gravity="0 0 0" timestep="{dt}" integrator="{integrator}"/>
-  <worldbody>
-    <body name="top">
-      <freejoint/>
-      <inertial pos="0 0 0" mass="1" diaginertia="2 2 3"/>
-    </body>
-  </worldbody>
-</mujoco>
-"""
-
-
-def axis_angle(axis, angle):
-    axis = np.asarray(axis, dtype=float)
-    return np.r_[math.cos(angle / 2), math.sin(angle / 2) * axis / np.linalg.norm(axis)]
-
 
 def symmetric_top(w, t):
     L = I * w
     Omega = (I[2] - I[0]) / I[0] * w[2]
-    return quat_mul(axis_angle(L, np.linalg.norm(L) * t / I[0]), axis_angle([0, 0, 1], -Omega * t))
+    return quat_mul(quat_axis_angle(L, np.linalg.norm(L) * t / I[0]), quat_axis_angle([0, 0, 1], -Omega * t))
 
 
 def run(integrator, hw):
-    model = mujoco.MjModel.from_xml_string(MJCF.format(dt=H, integrator=integrator))
+    model = free_body_model(I, H, integrator)
     data = mujoco.MjData(model)
     w = hw / H * np.array([math.sin(math.radians(30)), 0.0, math.cos(math.radians(30))])
     data.qvel[3:6] = w  # body frame (= world at t = 0)

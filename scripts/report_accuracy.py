@@ -25,25 +25,24 @@ The core is built in --build (default $RIGIDFMU_BUILD or build/) like build_fmu.
 unless --no-build; a directory holding rigidfmu-describe and the rigidfmu_fmi2_*.so
 binaries but no CMakeCache.txt is used as prebuilt (packaging only)."""
 import argparse
-import hashlib
+import functools
 import json
 import math
 import os
 import pathlib
 import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
 
 import numpy as np
 from heave import heave  # noqa: E402
+from fmu_build import ensure_core, package  # noqa: E402
 from torque_free import torque_free_reference  # noqa: E402
 from quaternion import quat_axis_angle, quat_mul, rotation_angle  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-CMAKE = "/usr/bin/cmake"
 G = 9.81
 
 # Expected orders of the methods this script knows (error vs step; the adaptive method's
@@ -313,45 +312,7 @@ def problems():
 
 
 # ----------------------------------------------------------------------------------
-# building FMUs
-
-def ensure_core(build, no_build):
-    """Configures and builds the core like build_fmu.sh; a directory with the binaries
-    but no CMakeCache.txt is taken as prebuilt."""
-    prebuilt = (build / "rigidfmu-describe").exists() and not (build / "CMakeCache.txt").exists()
-    if no_build or prebuilt:
-        if not (build / "rigidfmu-describe").exists():
-            sys.exit(f"report_accuracy: no rigidfmu-describe in {build} (build it, or drop --no-build)")
-        return
-    if not (build / "CMakeCache.txt").exists():
-        subprocess.run([CMAKE, "-S", str(ROOT), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release"],
-                       check=True, stdout=subprocess.DEVNULL)
-    subprocess.run([CMAKE, "--build", str(build), f"-j{os.cpu_count() or 1}", "--target",
-                    "rigidfmu-describe", "rigidfmu_fmus"], check=True, stdout=subprocess.DEVNULL)
-
-
-class Builder:
-    def __init__(self, build, folder):
-        self.build, self.folder = pathlib.Path(build), pathlib.Path(folder)
-
-    def fmu(self, scene_dict):
-        text = json.dumps(scene_dict, indent=1, sort_keys=True)
-        key = hashlib.sha256(text.encode()).hexdigest()[:12]
-        name = scene_dict.get("name", "scene")
-        out = self.folder / f"{name}-{key}.fmu"
-        if not out.exists():
-            path = self.folder / f"{name}-{key}.json"
-            path.write_text(text)
-            subprocess.run([CMAKE, f"-DSCENE={path}", f"-DOUT={out}",
-                            f"-DDESCRIBE={self.build / 'rigidfmu-describe'}",
-                            f"-DLIBRARY_DIR={self.build}", "-P",
-                            str(ROOT / "cmake" / "package_fmu.cmake")],
-                           check=True, stdout=subprocess.DEVNULL)
-        return out
-
-
-# ----------------------------------------------------------------------------------
-# running an FMU
+# running an FMU (built by fmu_build.py)
 
 class Model:
     """One FMU: its methods (from the modelDescription), its variables, one extracted copy."""
@@ -828,7 +789,7 @@ def report(args, builder, folder):
     results, methods_seen = [], None
     t_start = time.perf_counter()
     for p in probs:
-        model = Model(builder.fmu(p.scene), folder)
+        model = Model(builder(p.scene), folder)
         methods_seen = model.methods
         print(f"{p.key}: {p.title} (T = {p.T:g} s; methods "
               f"{', '.join(n for n, _, _ in model.methods)})", flush=True)
@@ -891,7 +852,7 @@ def scene_mode(args, builder, folder):
     scene_dict = json.loads(pathlib.Path(args.scene).read_text())
     T = args.stop_time
     base = float(scene_dict.get("solver", {}).get("step", 1e-3))
-    model = Model(builder.fmu(scene_dict), folder)
+    model = Model(builder(scene_dict), folder)
     if not any(n.endswith((".position[1]", ".orientation[1]")) for n in model.vars):
         sys.exit("report_accuracy: the scene exposes no position or orientation output")
     comm = min(COMM, T)
@@ -974,10 +935,10 @@ def main():
     if args.scene and args.tolerance is None:
         p.error("--scene needs --tolerance")
     build = pathlib.Path(args.build).resolve()
-    ensure_core(build, args.no_build)
+    ensure_core(build, args.no_build, "report_accuracy")
     folder = tempfile.mkdtemp(prefix="rigidfmu-accuracy-")
     try:
-        builder = Builder(build, folder)
+        builder = functools.partial(package, build, folder)  # scene dict -> FMU path
         return scene_mode(args, builder, folder) if args.scene else report(args, builder, folder)
     finally:
         shutil.rmtree(folder, ignore_errors=True)

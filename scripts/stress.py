@@ -34,7 +34,6 @@ usage:
 Exit status 1 when any run FAILS, 0 otherwise."""
 import argparse
 import ctypes
-import hashlib
 import json
 import math
 import os
@@ -51,10 +50,10 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 from heave import heave  # noqa: E402
 from quaternion import quat_axis_angle, quat_mul, rotation_angle  # noqa: E402
+from fmu_build import ensure_core, package  # noqa: E402
 from torque_free import torque_free_reference  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-CMAKE = "/usr/bin/cmake"
 G = 9.81
 RHO_WATER, MU_WATER = 998.2, 1.002e-3  # the "water" type (README)
 
@@ -129,35 +128,7 @@ def spinner_scene(name, inertia, omega, step=1e-3):
 
 
 # ----------------------------------------------------------------------------------
-# building and loading FMUs
-
-def ensure_core(build, no_build):
-    prebuilt = (build / "rigidfmu-describe").exists() and not (build / "CMakeCache.txt").exists()
-    if no_build or prebuilt:
-        if not (build / "rigidfmu-describe").exists():
-            sys.exit(f"stress: no rigidfmu-describe in {build} (build it, or drop --no-build)")
-        return
-    if not (build / "CMakeCache.txt").exists():
-        subprocess.run([CMAKE, "-S", str(ROOT), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release"],
-                       check=True, stdout=subprocess.DEVNULL)
-    subprocess.run([CMAKE, "--build", str(build), f"-j{os.cpu_count() or 1}", "--target",
-                    "rigidfmu-describe", "rigidfmu_fmus"], check=True, stdout=subprocess.DEVNULL)
-
-
-def package(build, folder, scene_dict):
-    text = json.dumps(scene_dict, indent=1, sort_keys=True)
-    key = hashlib.sha256(text.encode()).hexdigest()[:12]
-    name = scene_dict.get("name", "scene")
-    out = pathlib.Path(folder) / f"{name}-{key}.fmu"
-    if not out.exists():
-        path = pathlib.Path(folder) / f"{name}-{key}.json"
-        path.write_text(text)
-        subprocess.run([CMAKE, f"-DSCENE={path}", f"-DOUT={out}",
-                        f"-DDESCRIBE={pathlib.Path(build) / 'rigidfmu-describe'}",
-                        f"-DLIBRARY_DIR={build}", "-P", str(ROOT / "cmake" / "package_fmu.cmake")],
-                       check=True, stdout=subprocess.DEVNULL)
-    return out
-
+# loading FMUs (built by fmu_build.py)
 
 _libc = ctypes.CDLL(None)
 _libc.calloc.restype = ctypes.c_void_p
@@ -1198,7 +1169,7 @@ def main():
     p.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1))
     args = p.parse_args()
     build = pathlib.Path(args.build).resolve()
-    ensure_core(build, args.no_build)
+    ensure_core(build, args.no_build, "stress")
     start = time.perf_counter()
     folder = tempfile.mkdtemp(prefix="rigidfmu-stress-")
     try:

@@ -556,8 +556,9 @@ fmi2Status Instance::getOutputDerivatives(const fmi2ValueReference vr[], size_t 
       case Quantity::Orientation: value[i] = dY[b].dq[(c + 3) % 4]; break;  // (w,x,y,z) from (x,y,z,w)
       case Quantity::Velocity: value[i] = dY[b].dP[c] / model_.bodies[b].mass; break;
       case Quantity::AngularVelocity:
-        // d(I^-1 L)/dt = I^-1 (T - omega x L) for a rigid body
-        value[i] = (a.Iinv * (a.T - a.omega.cross(data_.Y[b].L)))[c];
+        // d(I^-1 L)/dt = I^-1 (T - omega x L) for a rigid body, I^-1 = R Ibody^-1 R^T
+        // (the force stage forms I(t)^-1 only when surfaces need it)
+        value[i] = (a.R * (model_.bodies[b].IbodyInv * (a.R.transpose() * (a.T - a.omega.cross(data_.Y[b].L)))))[c];
         break;
       case Quantity::LinearMomentum: value[i] = dY[b].dP[c]; break;
       case Quantity::AngularMomentum: value[i] = dY[b].dL[c]; break;

@@ -32,15 +32,15 @@ void setInertia(BodyConstants& body, const Mat3& Ibody) {
 
 void computeAuxiliaries(const BodyConstants& body, const BodyState& y, BodyAux& aux) {
   aux.V = y.P / body.mass;
-  aux.R = y.q.normalized().toRotationMatrix();
+  aux.R = rotationOf(y.q);
   aux.Iinv = aux.R * body.IbodyInv * aux.R.transpose();
   aux.omega = aux.Iinv * y.L;
 }
 
 void computeVelocities(const BodyConstants& body, const BodyState& y, BodyAux& aux) {
   aux.V = y.P / body.mass;
-  aux.R = y.q.normalized().toRotationMatrix();
-  aux.omega = aux.R * (body.IbodyInv * (aux.R.transpose() * y.L));
+  aux.R = rotationOf(y.q);
+  aux.omega = angularVelocity(body, aux.R, y.L);
 }
 
 BodyState initialState(const BodyConstants& body) {

@@ -60,7 +60,8 @@ struct BodyDerivative {
 struct BodyAux {
   Vec3 V;      // m/s, P / M                      (computeAuxiliaries)
   Mat3 R;      // rotation of q, body -> world    (computeAuxiliaries)
-  Mat3 Iinv;   // 1/(kg m^2), R Ibody^-1 R^T       (computeAuxiliaries)
+  Mat3 Iinv;   // 1/(kg m^2), R Ibody^-1 R^T       (computeAuxiliaries only: the
+               // surfaces' force stages and responses; refreshAuxiliaries leaves it)
   Vec3 omega;  // rad/s, I(t)^-1 L, world frame   (computeAuxiliaries)
   Vec3 F;      // N, total force at the centre of mass   (force stage)
   Vec3 T;      // N m, total torque about the centre of mass (force stage)
@@ -72,13 +73,33 @@ struct BodyInput {
   Vec3 torque = Vec3::Zero();  // N m, world frame
 };
 
+// R of the unit quaternion q / |q| for any q != 0 (Runge-Kutta stages are not unit):
+// each product of two components is scaled by 2 / |q|^2, which costs a division
+// instead of normalising q (a square root and four divisions).
+inline Mat3 rotationOf(const Quat& q) {
+  const double s = 2.0 / q.squaredNorm();
+  const double xs = q.x() * s, ys = q.y() * s, zs = q.z() * s;
+  const double wx = q.w() * xs, wy = q.w() * ys, wz = q.w() * zs;
+  const double xx = q.x() * xs, xy = q.x() * ys, xz = q.x() * zs;
+  const double yy = q.y() * ys, yz = q.y() * zs, zz = q.z() * zs;
+  Mat3 R;
+  R << 1.0 - (yy + zz), xy - wz, xz + wy,
+       xy + wz, 1.0 - (xx + zz), yz - wx,
+       xz - wy, yz + wx, 1.0 - (xx + yy);
+  return R;
+}
+
+// omega = I(t)^-1 L = R (Ibody^-1 (R^T L)): three matrix-vector products instead of
+// forming I(t)^-1, which only contacts use.
+inline Vec3 angularVelocity(const BodyConstants& body, const Mat3& R, const Vec3& L) {
+  return R * (body.IbodyInv * (R.transpose() * L));
+}
+
 // V, R, I(t)^-1 and omega from Y. q need not be unit (Runge-Kutta stages are not):
 // R is taken from the normalised q.
 void computeAuxiliaries(const BodyConstants& body, const BodyState& y, BodyAux& aux);
 
 // V, R and omega only (aux.Iinv is left as it was): what a free body's derivative needs.
-// omega = R (Ibody^-1 (R^T L)) costs three matrix-vector products instead of forming
-// I(t)^-1, which only contacts use.
 void computeVelocities(const BodyConstants& body, const BodyState& y, BodyAux& aux);
 
 // Y of a body at rest in its start pose, with P = M V0 and L = I(0) omega0.

@@ -21,14 +21,9 @@ void accumulateForces(const WorldModel& model, const BodyConstants& body, const 
 #endif
 }
 
-// 1/2 omega q with omega as the pure quaternion (0, omega); omega is in the world
-// frame and q maps body to world, so omega multiplies from the left.
-Eigen::Vector4d spin(const Vec3& omega, const Quat& q) {
-  const Quat w(0.0, omega.x(), omega.y(), omega.z());
-  return 0.5 * (w * q).coeffs();
-}
-
 }  // namespace
+
+bool forcesHeldOverStep(const WorldModel& model) { return model.media.empty() && model.surfaces.empty(); }
 
 void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
                              const BodyInput& in, const BodyState& y, BodyAux& aux) {
@@ -54,7 +49,7 @@ void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body,
     accumulateAppliedForces(model, body, input, y, aux);
   }
   dy.dX = aux.V;
-  dy.dq = spin(aux.omega, y.q);
+  dy.dq = orientationRate(aux.omega, y.q);
   dy.dP = aux.F;
   dy.dL = aux.T;
 }

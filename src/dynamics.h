@@ -9,6 +9,19 @@ namespace rigid {
 
 struct WorldModel;
 
+// dq/dt = 1/2 omega q with omega as the pure quaternion (0, omega), in Quat's storage
+// order: omega is in the world frame and q maps body to world, so omega multiplies
+// from the left.
+inline Eigen::Vector4d orientationRate(const Vec3& omega, const Quat& q) {
+  const Quat w(0.0, omega.x(), omega.y(), omega.z());
+  return 0.5 * (w * q).coeffs();
+}
+
+// Whether every force on every body stays constant over a step: gravity and the
+// inputs (held over each step) only, with no media (buoyancy and drag follow the
+// state) and no surfaces (support and friction follow it too).
+bool forcesHeldOverStep(const WorldModel& model);
+
 // Every force on one body but the surfaces': gravity, the inputs, the media.
 // Adds to nothing: sets aux.F and aux.T. aux's V, R and omega must be those of y.
 void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,

@@ -6,6 +6,7 @@
 #include <limits>
 #include <utility>
 
+#include "body_packs.h"
 #include "dynamics.h"
 #include "modules.h"
 
@@ -62,9 +63,31 @@ WorldData initialData(const WorldModel& model) {
   return d;
 }
 
+// computeVelocities() of every body, four bodies at a time (body_packs.h).
 void refreshAuxiliaries(const WorldModel& model, WorldData& data) {
-  for (size_t i = 0; i < data.Y.size(); ++i)
-    computeAuxiliaries(model.bodies[i], data.Y[i], data.aux[i]);
+  const size_t n = data.Y.size();
+  for (size_t first = 0; first < n; first += kLanes) {
+    QuatPack q;
+    Pack L[3], Iinv[9];
+    loadInverseInertia(model.bodies, first, n, Iinv);
+    for (int lane = 0; lane < kLanes; ++lane) {
+      const BodyState& y = data.Y[laneBody(first, lane, n)];
+      q.w[lane] = y.q.w(), q.x[lane] = y.q.x(), q.y[lane] = y.q.y(), q.z[lane] = y.q.z();
+      for (int c = 0; c < 3; ++c) L[c][lane] = y.L[c];
+    }
+    const RotationPack R = rotationOf(q);
+    Pack Lbody[3], omegaBody[3], omega[3];
+    multiplyTransposed(R.r, L, Lbody);
+    multiply(Iinv, Lbody, omegaBody);
+    multiply(R.r, omegaBody, omega);
+    for (int lane = 0; lane < kLanes && first + lane < n; ++lane) {
+      const size_t i = first + lane;
+      BodyAux& aux = data.aux[i];
+      aux.V = data.Y[i].P / model.bodies[i].mass;
+      for (int e = 0; e < 9; ++e) aux.R(e / 3, e % 3) = R.r[e][lane];
+      aux.omega = Vec3(omega[0][lane], omega[1][lane], omega[2][lane]);
+    }
+  }
 }
 
 namespace {
@@ -132,9 +155,15 @@ constexpr double kContactMargin = 1e-6;
 // origin (collision detection's geometry fails far beyond, and no scene is that big).
 constexpr double kMaxDistance = 1e12;  // m
 
+bool answerable(const BodyState& y) {
+  // v - v is 0 for a finite v and NaN otherwise: one sum tests all 13 values at once
+  const double zero = (y.X - y.X).sum() + (y.q.coeffs() - y.q.coeffs()).sum() + (y.P - y.P).sum() + (y.L - y.L).sum();
+  return zero == 0.0 && y.X.cwiseAbs().maxCoeff() <= kMaxDistance;
+}
+
 int firstNonFinite(const std::vector<BodyState>& Y) {
   for (size_t i = 0; i < Y.size(); ++i)
-    if (!isFinite(Y[i]) || Y[i].X.cwiseAbs().maxCoeff() > kMaxDistance) return static_cast<int>(i);
+    if (!answerable(Y[i])) return static_cast<int>(i);
   return -1;
 }
 
@@ -358,16 +387,21 @@ void stabilitySubsteps(const WorldModel& model, const WorldData& data, double h,
       r.stableStep = stable;
     }
   };
-  for (size_t i = 0; i < data.Y.size(); ++i) {
-    consider(data.aux[i].omega.norm(), limits.spin, "spin");
+  // the fastest spin sets the sub-steps: one square root, not one per body
+  double spin2 = 0.0;
+  for (const BodyAux& aux : data.aux) spin2 = std::max(spin2, aux.omega.squaredNorm());
+  consider(std::sqrt(spin2), limits.spin, "spin");
 #if RIGID_WITH_MEDIA
+  for (size_t i = 0; i < data.Y.size(); ++i) {
     for (const Medium& medium : model.media) {
       const MediumRates rates = mediumRates(medium, model.bodies[i], data.Y[i], data.aux[i], model.gravity);
       consider(rates.damping, limits.damping, "drag");
       consider(rates.oscillation, limits.oscillation, "buoyancy heave");
     }
-#endif
   }
+#else
+  (void)model;
+#endif
 }
 
 }  // namespace

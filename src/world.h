@@ -58,7 +58,7 @@ struct WorldData {
   // Their rates of change over the current communication step (N/s, N m/s): the FMU's
   // input derivatives; zero unless a master sets them.
   std::vector<BodyInput> inputRate;
-  std::vector<BodyAux> aux;    // auxiliaries of Y, valid after initialise() and step()
+  std::vector<BodyAux> aux;    // V, R and omega of Y, valid after initialise() and step()
   std::vector<int> contacts;   // contact points of each body at the end of the last step
   // The energy audit (world.cpp), per body: twice the rotational energy of Y, that at
   // the start of the current stretch of steps free of torques and impulses, and the
@@ -80,7 +80,8 @@ struct WorldData {
 // Data for the start of a run: every body at its start values, inputs zero.
 WorldData initialData(const WorldModel& model);
 
-// Refreshes the auxiliaries of the current Y (for outputs).
+// Refreshes V, R and omega of the current Y (outputs, the energy audit, the stability
+// limits). I(t)^-1 is left out: only contacts use it, and they form their own.
 void refreshAuxiliaries(const WorldModel& model, WorldData& data);
 
 struct StepResult {

@@ -154,9 +154,11 @@ void mergePairs(const WorldModel& model, const std::vector<BodyState>& Y,
     Vec3 point = Vec3::Zero(), normal = Vec3::Zero();
     int n = 0;
     size_t k = i;
+    const Contact* nearest = &contacts[i];
     for (; k < contacts.size() && contacts[k].a == m.a && contacts[k].b == m.b &&
            contacts[k].surface == m.surface;
          ++k) {
+      if (contacts[k].depth > nearest->depth) nearest = &contacts[k];
       if (contacts[k].depth < -kTouching) continue;
       point += contacts[k].point;
       normal += contacts[k].normal;
@@ -164,7 +166,12 @@ void mergePairs(const WorldModel& model, const std::vector<BodyState>& Y,
       ++n;
     }
     i = k;
-    if (n == 0) continue;
+    if (n == 0) {
+      // Apart (a speculative contact): no impulse, but the position correction must
+      // not push either body into the other; its nearest point tells how far it may.
+      merged.push_back(*nearest);
+      continue;
+    }
     m.point = point / n;
     m.normal = normal.normalized();
     merged.push_back(m);
@@ -172,13 +179,15 @@ void mergePairs(const WorldModel& model, const std::vector<BodyState>& Y,
 }
 
 // Bodies resting on a surface's top face take part as contacts with a static partner,
-// so that what bodies above press into them is answered in the same passes.
-void appendSurfaceContacts(const WorldModel& model, const std::vector<BodyState>& Y,
+// so that what bodies above press into them is answered in the same passes; bodies
+// within `reach` of it take part in the position correction, which must not push them
+// into it.
+void appendSurfaceContacts(const WorldModel& model, const std::vector<BodyState>& Y, double reach,
                            std::vector<Contact>& out) {
   for (size_t i = 0; i < Y.size(); ++i) {
     for (size_t s = 0; s < model.surfaces.size(); ++s) {
       const SurfaceContact sc = surfaceContact(model.surfaces[s], model.bodies[i], Y[i]);
-      if (!sc.overFace || sc.gap > kTouching) continue;
+      if (!sc.overFace || sc.gap > std::max(reach, kTouching)) continue;
       Contact c;
       c.a = static_cast<int>(i);
       c.surface = static_cast<int>(s);
@@ -213,10 +222,70 @@ std::vector<int> stackLevels(size_t bodies, const std::vector<Contact>& contacts
   return level;
 }
 
+// Contacts ordered from the bottom of the stacks up (by the lower level of the pair;
+// surfaces first).
+std::vector<size_t> bottomUp(const std::vector<Contact>& contacts, const std::vector<int>& level) {
+  std::vector<size_t> order(contacts.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  auto lower = [&](const Contact& c) { return c.b < 0 ? -1 : std::min(level[c.a], level[c.b]); };
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t x, size_t y) { return lower(contacts[x]) < lower(contacts[y]); });
+  return order;
+}
+
+// Overlaps removed by moving bodies (translation only: positions change, velocities
+// do not, so no energy is added). Each pair's overlap is taken out along its normal, a
+// body on a surface moving out of it, an upper body moving off the lower one, both by
+// inverse mass at equal levels. One move can push a body into a neighbour (a body
+// lifted off its support into the one above it, a body pressed into the floor by one
+// beside it), so the passes are repeated, each depth updated by the moves made so far
+// (nonlinear Gauss-Seidel, as Box2D's position solver), until no overlap deeper than
+// kResidual is left. Contacts with a gap (speculative ones) take part only when the
+// moves close it. Returns the largest distance a body was moved (m).
+constexpr double kResidual = 1e-6;  // m
+constexpr int kMaxCorrectionPasses = 100;
+// The first passes move only the upper body of a pair at different stack levels, so
+// that one bottom-up sweep settles a stack; but levels know contacts, not which body is
+// above (one resting against the underside of a body of a lower level is stuck
+// between two immovable partners), so the later passes move both by inverse mass:
+// projections in one metric, which converge.
+constexpr int kLevelPasses = 3;
+
+double correctPositions(const WorldModel& model, const std::vector<Contact>& contacts,
+                        const std::vector<int>& level, const std::vector<size_t>& order,
+                        std::vector<BodyState>& Y) {
+  std::vector<Vec3> moved(Y.size(), Vec3::Zero());
+  for (int pass = 0; pass < kMaxCorrectionPasses; ++pass) {
+    double deepest = 0.0;
+    for (size_t o : order) {
+      const Contact& c = contacts[o];
+      const Vec3 relative = c.b >= 0 ? Vec3(moved[c.a] - moved[c.b]) : moved[c.a];
+      const double depth = c.depth + relative.dot(c.normal);
+      if (depth <= 0.0) continue;
+      deepest = std::max(deepest, depth);
+      double wa = 1.0 / model.bodies[c.a].mass;
+      double wb = c.b >= 0 ? 1.0 / model.bodies[c.b].mass : 0.0;
+      if (pass < kLevelPasses && c.b >= 0 && level[c.a] != level[c.b]) (level[c.a] < level[c.b] ? wa : wb) = 0.0;
+      const Vec3 da = -depth * wa / (wa + wb) * c.normal;
+      Y[c.a].X += da;
+      moved[c.a] += da;
+      if (c.b >= 0) {
+        const Vec3 db = depth * wb / (wa + wb) * c.normal;
+        Y[c.b].X += db;
+        moved[c.b] += db;
+      }
+    }
+    if (deepest <= kResidual) break;
+  }
+  double largest = 0.0;
+  for (const Vec3& m : moved) largest = std::max(largest, m.norm());
+  return largest;
+}
+
 }  // namespace
 
-void resolveContacts(const WorldModel& model, const std::vector<Contact>& found,
-                     double restingSpeed, std::vector<BodyState>& Y, std::vector<int>& count) {
+double resolveContacts(const WorldModel& model, const std::vector<Contact>& found, double restingSpeed,
+                       double reach, std::vector<BodyState>& Y, std::vector<int>& count) {
   for (const Contact& c : found) {
     if (c.depth < -kTouching || c.b < 0) continue;
     ++count[c.a];
@@ -224,8 +293,8 @@ void resolveContacts(const WorldModel& model, const std::vector<Contact>& found,
   }
   std::vector<Contact> contacts;
   mergePairs(model, Y, found, contacts);
-  if (contacts.empty()) return;
-  appendSurfaceContacts(model, Y, contacts);
+  if (contacts.empty()) return 0.0;
+  appendSurfaceContacts(model, Y, reach, contacts);
   // Poses do not change while impulses are exchanged: each body's inverse inertia,
   // each contact's sides and its inverse effective mass along the normal are computed
   // once, not in every Gauss-Seidel pass.
@@ -286,11 +355,7 @@ void resolveContacts(const WorldModel& model, const std::vector<Contact>& found,
   // no longer push it into the floor, which Gauss-Seidel passes alone settle far too
   // slowly at mass ratios of 1e3 and more.
   const std::vector<int> level = stackLevels(Y.size(), contacts);
-  std::vector<size_t> order(contacts.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  auto lower = [&](const Contact& c) { return c.b < 0 ? -1 : std::min(level[c.a], level[c.b]); };
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t x, size_t y) { return lower(contacts[x]) < lower(contacts[y]); });
+  const std::vector<size_t> order = bottomUp(contacts, level);
   for (size_t o : order) {
     const Contact& c = contacts[o];
     if (c.depth < -kTouching || c.b < 0 || level[c.a] == level[c.b]) continue;
@@ -303,27 +368,17 @@ void resolveContacts(const WorldModel& model, const std::vector<Contact>& found,
     if (a.invMass > 0.0) applyImpulse(Y, c.a, a, -j * c.normal);
     if (b.invMass > 0.0) applyImpulse(Y, c.b, b, j * c.normal);
   }
-  // Overlaps removed pair by pair, translation only, from the bottom up: a body on a
-  // surface moves out of it, an upper body moves off the lower one (both by inverse
-  // mass at equal levels). Depths are corrected for the moves made before them.
-  std::vector<Vec3> moved(Y.size(), Vec3::Zero());
-  for (size_t o : order) {
-    const Contact& c = contacts[o];
-    const Vec3 relative = c.b >= 0 ? Vec3(moved[c.a] - moved[c.b]) : moved[c.a];
-    const double depth = c.depth + relative.dot(c.normal);
-    if (depth <= 0.0) continue;
-    double wa = 1.0 / model.bodies[c.a].mass;
-    double wb = c.b >= 0 ? 1.0 / model.bodies[c.b].mass : 0.0;
-    if (c.b >= 0 && level[c.a] != level[c.b]) (level[c.a] < level[c.b] ? wa : wb) = 0.0;
-    const Vec3 da = -depth * wa / (wa + wb) * c.normal;
-    Y[c.a].X += da;
-    moved[c.a] += da;
-    if (c.b >= 0) {
-      const Vec3 db = depth * wb / (wa + wb) * c.normal;
-      Y[c.b].X += db;
-      moved[c.b] += db;
-    }
-  }
+  return correctPositions(model, contacts, level, order, Y);
+}
+
+double separateOverlaps(const WorldModel& model, const std::vector<Contact>& found, double reach,
+                        std::vector<BodyState>& Y) {
+  std::vector<Contact> contacts;
+  mergePairs(model, Y, found, contacts);
+  appendSurfaceContacts(model, Y, reach, contacts);
+  if (contacts.empty()) return 0.0;
+  const std::vector<int> level = stackLevels(Y.size(), contacts);
+  return correctPositions(model, contacts, level, bottomUp(contacts, level), Y);
 }
 
 }  // namespace rigid

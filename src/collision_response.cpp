@@ -241,45 +241,72 @@ std::vector<size_t> bottomUp(const std::vector<Contact>& contacts, const std::ve
 // beside it), so the passes are repeated, each depth updated by the moves made so far
 // (nonlinear Gauss-Seidel, as Box2D's position solver), until no overlap deeper than
 // kResidual is left. Contacts with a gap (speculative ones) take part only when the
-// moves close it. Returns the largest distance a body was moved (m).
+// moves close it. Returns the sum of the two largest distances bodies were moved (m).
 constexpr double kResidual = 1e-6;  // m
 constexpr int kMaxCorrectionPasses = 100;
-// The first passes move only the upper body of a pair at different stack levels, so
-// that one bottom-up sweep settles a stack; but levels know contacts, not which body is
-// above (one resting against the underside of a body of a lower level is stuck
-// between two immovable partners), so the later passes move both by inverse mass:
-// projections in one metric, which converge.
-constexpr int kLevelPasses = 3;
+// Passes after which every pair moves by inverse mass: projections in one metric,
+// which converge whatever the stack levels say.
+constexpr int kLevelPasses = 10;
+
+// One pair as the position correction sees it: the share of the overlap each body
+// takes, by stack level, and by inverse mass alone.
+struct Separation {
+  int a, b;  // b < 0: a static partner
+  Vec3 n;    // from a to b
+  double depth;
+  double shareA, shareB;          // by level: 0 for a lower body that is below
+  double massShareA, massShareB;  // by inverse mass
+};
+
+// The lower body of a pair at different levels stays put (a stack settles in one
+// bottom-up sweep), but only when it is below the other along `up`: levels know
+// contacts, not geometry, and a body resting against the underside of a body of a
+// lower level would otherwise be pinned between two immovable partners.
+std::vector<Separation> separations(const WorldModel& model, const std::vector<Contact>& contacts,
+                                    const std::vector<int>& level, const std::vector<size_t>& order) {
+  const Vec3 up = model.gravity.norm() > 0.0 ? Vec3(-model.gravity.normalized()) : Vec3::Zero();
+  std::vector<Separation> out;
+  out.reserve(order.size());
+  for (size_t o : order) {
+    const Contact& c = contacts[o];
+    const double wa = 1.0 / model.bodies[c.a].mass;
+    const double wb = c.b >= 0 ? 1.0 / model.bodies[c.b].mass : 0.0;
+    Separation s{c.a, c.b, c.normal, c.depth, wa / (wa + wb), wb / (wa + wb), wa / (wa + wb), wb / (wa + wb)};
+    if (c.b >= 0 && level[c.a] < level[c.b] && c.normal.dot(up) > 0.0) s.shareA = 0.0, s.shareB = 1.0;
+    if (c.b >= 0 && level[c.b] < level[c.a] && c.normal.dot(up) < 0.0) s.shareA = 1.0, s.shareB = 0.0;
+    out.push_back(s);
+  }
+  return out;
+}
 
 double correctPositions(const WorldModel& model, const std::vector<Contact>& contacts,
                         const std::vector<int>& level, const std::vector<size_t>& order,
                         std::vector<BodyState>& Y) {
+  const std::vector<Separation> pairs = separations(model, contacts, level, order);
   std::vector<Vec3> moved(Y.size(), Vec3::Zero());
   for (int pass = 0; pass < kMaxCorrectionPasses; ++pass) {
+    const bool byLevel = pass < kLevelPasses;
     double deepest = 0.0;
-    for (size_t o : order) {
-      const Contact& c = contacts[o];
-      const Vec3 relative = c.b >= 0 ? Vec3(moved[c.a] - moved[c.b]) : moved[c.a];
-      const double depth = c.depth + relative.dot(c.normal);
+    for (const Separation& s : pairs) {
+      const Vec3 relative = s.b >= 0 ? Vec3(moved[s.a] - moved[s.b]) : moved[s.a];
+      const double depth = s.depth + relative.dot(s.n);
       if (depth <= 0.0) continue;
       deepest = std::max(deepest, depth);
-      double wa = 1.0 / model.bodies[c.a].mass;
-      double wb = c.b >= 0 ? 1.0 / model.bodies[c.b].mass : 0.0;
-      if (pass < kLevelPasses && c.b >= 0 && level[c.a] != level[c.b]) (level[c.a] < level[c.b] ? wa : wb) = 0.0;
-      const Vec3 da = -depth * wa / (wa + wb) * c.normal;
-      Y[c.a].X += da;
-      moved[c.a] += da;
-      if (c.b >= 0) {
-        const Vec3 db = depth * wb / (wa + wb) * c.normal;
-        Y[c.b].X += db;
-        moved[c.b] += db;
-      }
+      moved[s.a] -= depth * (byLevel ? s.shareA : s.massShareA) * s.n;
+      if (s.b >= 0) moved[s.b] += depth * (byLevel ? s.shareB : s.massShareB) * s.n;
     }
     if (deepest <= kResidual) break;
   }
-  double largest = 0.0;
-  for (const Vec3& m : moved) largest = std::max(largest, m.norm());
-  return largest;
+  // Two bodies that were not among the contacts (apart by the reach or more) can
+  // overlap now only if their moves add up to the reach: the two largest tell.
+  double largest = 0.0, second = 0.0;
+  for (size_t i = 0; i < Y.size(); ++i) {
+    Y[i].X += moved[i];
+    const double m = moved[i].norm();
+    if (m > largest) second = largest, largest = m;
+    else second = std::max(second, m);
+  }
+  return largest + second;
 }
 
 }  // namespace

@@ -102,8 +102,9 @@ constexpr double kContactMargin = 1e-6;
 // impulse, but the position correction, which may lift a body off its support by a
 // step's sinking (v h, millimetres), must know the neighbours it could push it into.
 constexpr double kSpeculativeMargin = 4e-3;
-// Rounds of detection and position correction after the response: when a body moved
-// by half the speculative margin or more, pairs that were not detected may overlap.
+// Rounds of detection and position correction after the response: when the two
+// largest moves add up to the speculative margin, pairs that were not detected may
+// overlap.
 constexpr int kMaxSeparationRounds = 4;
 
 // Contact response: what happens at an instant rather than over the step. The
@@ -135,7 +136,7 @@ constexpr int kMaxSeparationRounds = 4;
       moved = resolveContacts(model, c->contacts, restingNormalSpeed(model.gravity, h), kSpeculativeMargin, after,
                               data.contacts);
     }
-    for (int round = 1; round < kMaxSeparationRounds && 2.0 * moved >= kSpeculativeMargin; ++round) {
+    for (int round = 1; round < kMaxSeparationRounds && moved >= kSpeculativeMargin; ++round) {
       c->detector.detect(after, kContactMargin, c->contacts, profileOf(data), kSpeculativeMargin);
       Stopwatch response(slotOf(data, &StepProfile::response));
       moved = separateOverlaps(model, c->contacts, kSpeculativeMargin, after);

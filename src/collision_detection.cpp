@@ -331,6 +331,34 @@ Vec3 touchingNormal(const Geo& A, const Geo& B) {
   return n;
 }
 
+// Largest separation of two boxes over the 15 axes of the separating-axis test (face
+// normals of both, cross products of their edges), with the axis n (a -> b) that
+// gives it. A positive value is a lower bound of their distance: moving b by less than
+// it along n (relative to a) cannot make them overlap, which is all that the position
+// correction asks of a pair that is apart. Costs far less than GJK.
+double boxSeparation(const Geo& A, const Geo& B, Vec3& n) {
+  const Vec3 d = B.p - A.p;
+  double best = -std::numeric_limits<double>::infinity();
+  auto consider = [&](const Vec3& axis) {
+    const double len = axis.norm();
+    if (len < 1e-9) return;  // parallel edges: their axis is one of the face normals
+    const Vec3 u = axis / len;
+    const double along = u.dot(d);
+    const double sep = std::abs(along) - supportExtent(A, u) - supportExtent(B, u);
+    if (sep > best) {
+      best = sep;
+      n = along >= 0.0 ? u : Vec3(-u);
+    }
+  };
+  for (int i = 0; i < 3; ++i) {
+    consider(A.R.col(i));
+    consider(B.R.col(i));
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) consider(A.R.col(i).cross(B.R.col(j)));
+  return best;
+}
+
 std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const Geo& g) {
   switch (g.type) {
     case ShapeType::Sphere:
@@ -394,8 +422,9 @@ struct CollisionDetector::Impl {
 
   std::vector<fcl::ContactPointd> boxContacts;  // scratch of the box-box routine
 
-  // Contacts of one candidate pair, appended to out.
-  void narrowphase(const Pair& pr, double margin, std::vector<Contact>& out);
+  // Contacts of one candidate pair, appended to out; pairs apart by less than
+  // `speculative` (beyond the margin) as one contact along their separating axis.
+  void narrowphase(const Pair& pr, double margin, double speculative, std::vector<Contact>& out);
   // A pair that does not overlap: its contacts when closer than the margin.
   void appendWithinMargin(const Geo& A, const Geo& B, fcl::CollisionObjectd* oA, fcl::CollisionObjectd* oB,
                           double margin, const Contact& proto, std::vector<Contact>& out);
@@ -457,18 +486,19 @@ CollisionDetector::CollisionDetector(CollisionDetector&&) noexcept = default;
 CollisionDetector& CollisionDetector::operator=(CollisionDetector&&) noexcept = default;
 
 void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, std::vector<Contact>& out,
-                               StepProfile* profile) {
+                               StepProfile* profile, double speculative) {
   Impl& d = *impl_;
   const auto start = profile ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   if (Y.size() != d.bodySlot.size())
     throw std::invalid_argument("CollisionDetector::detect: " + std::to_string(Y.size()) + " states for " +
                                 std::to_string(d.bodySlot.size()) + " bodies");
   margin = std::max(margin, 0.0);
+  speculative = std::max(speculative, margin);
   out.clear();
   // Transforms and AABBs. FCL's computeAABB bounds a turned shape by the cube around
   // its bounding sphere; the AABB is then set to the shape's tight one, grown by half
   // the margin, so that two shapes closer than the margin are candidates.
-  const Vec3 grow = Vec3::Constant(0.5 * margin);
+  const Vec3 grow = Vec3::Constant(0.5 * speculative);
   for (int slot = 0; slot < static_cast<int>(d.geo.size()); ++slot) {
     Geo& g = d.geo[slot];
     fcl::CollisionObjectd& obj = *d.objects[slot];
@@ -492,7 +522,7 @@ void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, s
   d.manager.collide(&d, &Impl::collect);
   std::sort(d.pairs.begin(), d.pairs.end());
   const auto broad = profile ? std::chrono::steady_clock::now() : start;
-  for (const Impl::Pair& p : d.pairs) d.narrowphase(p, margin, out);
+  for (const Impl::Pair& p : d.pairs) d.narrowphase(p, margin, speculative, out);
   if (profile) {
     profile->broadphase += std::chrono::duration<double, std::nano>(broad - start).count();
     profile->narrowphase +=
@@ -500,7 +530,8 @@ void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, s
   }
 }
 
-void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, std::vector<Contact>& out) {
+void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, double speculative,
+                                          std::vector<Contact>& out) {
   const Geo& A = geo[pr.slotA];
   const Geo& B = geo[pr.slotB];
   fcl::CollisionObjectd* oA = objects[pr.slotA].get();
@@ -531,17 +562,22 @@ void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, std::ve
       }
       return;
     }
-    if (margin <= 0.0) return;
-    // Apart: a gap below the margin needs FCL's distance (GJK, costly), but boxes grown
-    // by half the margin on every side that are still apart are at least the margin
-    // apart (two points closer than it have their midpoint in both grown boxes), which
-    // the same cheap separating-axis routine tells: most neighbours in a pile end here.
-    boxContacts.clear();
-    const Vec3 grow = Vec3::Constant(margin);
-    fcl::detail::boxBox2<double>(2.0 * A.half + grow, oA->getTransform(), 2.0 * B.half + grow, oB->getTransform(),
-                                 n, &depth, &code, 4, boxContacts);
-    if (code == 0) return;
-    appendWithinMargin(A, B, oA, oB, margin, proto, out);
+    if (speculative <= 0.0) return;
+    // Apart: the separating-axis test bounds the gap from below, cheaply. Only a bound
+    // below the margin needs FCL's distance (GJK, costly) for the touching contact's
+    // points; a pair within the speculative distance is one contact along that axis,
+    // and most neighbours in a pile end here.
+    const double separation = boxSeparation(A, B, n);
+    if (separation >= speculative) return;
+    if (separation < margin) {
+      appendWithinMargin(A, B, oA, oB, margin, proto, out);
+      return;
+    }
+    Contact c = proto;
+    c.normal = n;
+    c.depth = -separation;
+    c.point = 0.5 * (supportPoint(A, n) + supportPoint(B, -n));
+    out.push_back(c);
     return;
   }
 
@@ -565,7 +601,7 @@ void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, std::ve
     }
     return;
   }
-  appendWithinMargin(A, B, oA, oB, margin, proto, out);
+  appendWithinMargin(A, B, oA, oB, speculative, proto, out);
 }
 
 void CollisionDetector::Impl::appendWithinMargin(const Geo& A, const Geo& B, fcl::CollisionObjectd* oA,

@@ -46,8 +46,12 @@ class CollisionDetector {
   // `margin` (m, >= 0): pairs closer than this are reported too, with
   // depth = -distance (a gap); with margin 0 only touching or overlapping pairs.
   // With `profile`, the time of the broadphase and of the narrowphase is added to it.
+  // `speculative` (m, > margin to take effect): pairs apart by less than this are
+  // reported too, for the position correction to know what its moves could push into:
+  // box pairs as ONE contact along their separating axis with depth = -(the gap along
+  // it, a lower bound of their distance), other pairs as with the margin.
   void detect(const std::vector<BodyState>& Y, double margin, std::vector<Contact>& out,
-              StepProfile* profile = nullptr);
+              StepProfile* profile = nullptr, double speculative = 0.0);
 
  private:
   struct Impl;

@@ -154,9 +154,11 @@ void mergePairs(const WorldModel& model, const std::vector<BodyState>& Y,
     Vec3 point = Vec3::Zero(), normal = Vec3::Zero();
     int n = 0;
     size_t k = i;
+    const Contact* nearest = &contacts[i];
     for (; k < contacts.size() && contacts[k].a == m.a && contacts[k].b == m.b &&
            contacts[k].surface == m.surface;
          ++k) {
+      if (contacts[k].depth > nearest->depth) nearest = &contacts[k];
       if (contacts[k].depth < -kTouching) continue;
       point += contacts[k].point;
       normal += contacts[k].normal;
@@ -164,7 +166,12 @@ void mergePairs(const WorldModel& model, const std::vector<BodyState>& Y,
       ++n;
     }
     i = k;
-    if (n == 0) continue;
+    if (n == 0) {
+      // Apart (a speculative contact): no impulse, but the position correction must
+      // not push either body into the other; its nearest point tells how far it may.
+      merged.push_back(*nearest);
+      continue;
+    }
     m.point = point / n;
     m.normal = normal.normalized();
     merged.push_back(m);
@@ -172,13 +179,15 @@ void mergePairs(const WorldModel& model, const std::vector<BodyState>& Y,
 }
 
 // Bodies resting on a surface's top face take part as contacts with a static partner,
-// so that what bodies above press into them is answered in the same passes.
-void appendSurfaceContacts(const WorldModel& model, const std::vector<BodyState>& Y,
+// so that what bodies above press into them is answered in the same passes; bodies
+// within `reach` of it take part in the position correction, which must not push them
+// into it.
+void appendSurfaceContacts(const WorldModel& model, const std::vector<BodyState>& Y, double reach,
                            std::vector<Contact>& out) {
   for (size_t i = 0; i < Y.size(); ++i) {
     for (size_t s = 0; s < model.surfaces.size(); ++s) {
       const SurfaceContact sc = surfaceContact(model.surfaces[s], model.bodies[i], Y[i]);
-      if (!sc.overFace || sc.gap > kTouching) continue;
+      if (!sc.overFace || sc.gap > std::max(reach, kTouching)) continue;
       Contact c;
       c.a = static_cast<int>(i);
       c.surface = static_cast<int>(s);
@@ -213,10 +222,97 @@ std::vector<int> stackLevels(size_t bodies, const std::vector<Contact>& contacts
   return level;
 }
 
+// Contacts ordered from the bottom of the stacks up (by the lower level of the pair;
+// surfaces first).
+std::vector<size_t> bottomUp(const std::vector<Contact>& contacts, const std::vector<int>& level) {
+  std::vector<size_t> order(contacts.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  auto lower = [&](const Contact& c) { return c.b < 0 ? -1 : std::min(level[c.a], level[c.b]); };
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t x, size_t y) { return lower(contacts[x]) < lower(contacts[y]); });
+  return order;
+}
+
+// Overlaps removed by moving bodies (translation only: positions change, velocities
+// do not, so no energy is added). Each pair's overlap is taken out along its normal, a
+// body on a surface moving out of it, an upper body moving off the lower one, both by
+// inverse mass at equal levels. One move can push a body into a neighbour (a body
+// lifted off its support into the one above it, a body pressed into the floor by one
+// beside it), so the passes are repeated, each depth updated by the moves made so far
+// (nonlinear Gauss-Seidel, as Box2D's position solver), until no overlap deeper than
+// kResidual is left. Contacts with a gap (speculative ones) take part only when the
+// moves close it. Returns the sum of the two largest distances bodies were moved (m).
+constexpr double kResidual = 1e-6;  // m
+constexpr int kMaxCorrectionPasses = 100;
+// Passes after which every pair moves by inverse mass: projections in one metric,
+// which converge whatever the stack levels say.
+constexpr int kLevelPasses = 10;
+
+// One pair as the position correction sees it: the share of the overlap each body
+// takes, by stack level, and by inverse mass alone.
+struct Separation {
+  int a, b;  // b < 0: a static partner
+  Vec3 n;    // from a to b
+  double depth;
+  double shareA, shareB;          // by level: 0 for a lower body that is below
+  double massShareA, massShareB;  // by inverse mass
+};
+
+// The lower body of a pair at different levels stays put (a stack settles in one
+// bottom-up sweep), but only when it is below the other along `up`: levels know
+// contacts, not geometry, and a body resting against the underside of a body of a
+// lower level would otherwise be pinned between two immovable partners.
+std::vector<Separation> separations(const WorldModel& model, const std::vector<Contact>& contacts,
+                                    const std::vector<int>& level, const std::vector<size_t>& order) {
+  const Vec3 up = model.gravity.norm() > 0.0 ? Vec3(-model.gravity.normalized()) : Vec3::Zero();
+  std::vector<Separation> out;
+  out.reserve(order.size());
+  for (size_t o : order) {
+    const Contact& c = contacts[o];
+    const double wa = 1.0 / model.bodies[c.a].mass;
+    const double wb = c.b >= 0 ? 1.0 / model.bodies[c.b].mass : 0.0;
+    Separation s{c.a, c.b, c.normal, c.depth, wa / (wa + wb), wb / (wa + wb), wa / (wa + wb), wb / (wa + wb)};
+    if (c.b >= 0 && level[c.a] < level[c.b] && c.normal.dot(up) > 0.0) s.shareA = 0.0, s.shareB = 1.0;
+    if (c.b >= 0 && level[c.b] < level[c.a] && c.normal.dot(up) < 0.0) s.shareA = 1.0, s.shareB = 0.0;
+    out.push_back(s);
+  }
+  return out;
+}
+
+double correctPositions(const WorldModel& model, const std::vector<Contact>& contacts,
+                        const std::vector<int>& level, const std::vector<size_t>& order,
+                        std::vector<BodyState>& Y) {
+  const std::vector<Separation> pairs = separations(model, contacts, level, order);
+  std::vector<Vec3> moved(Y.size(), Vec3::Zero());
+  for (int pass = 0; pass < kMaxCorrectionPasses; ++pass) {
+    const bool byLevel = pass < kLevelPasses;
+    double deepest = 0.0;
+    for (const Separation& s : pairs) {
+      const Vec3 relative = s.b >= 0 ? Vec3(moved[s.a] - moved[s.b]) : moved[s.a];
+      const double depth = s.depth + relative.dot(s.n);
+      if (depth <= 0.0) continue;
+      deepest = std::max(deepest, depth);
+      moved[s.a] -= depth * (byLevel ? s.shareA : s.massShareA) * s.n;
+      if (s.b >= 0) moved[s.b] += depth * (byLevel ? s.shareB : s.massShareB) * s.n;
+    }
+    if (deepest <= kResidual) break;
+  }
+  // Two bodies that were not among the contacts (apart by the reach or more) can
+  // overlap now only if their moves add up to the reach: the two largest tell.
+  double largest = 0.0, second = 0.0;
+  for (size_t i = 0; i < Y.size(); ++i) {
+    Y[i].X += moved[i];
+    const double m = moved[i].norm();
+    if (m > largest) second = largest, largest = m;
+    else second = std::max(second, m);
+  }
+  return largest + second;
+}
+
 }  // namespace
 
-void resolveContacts(const WorldModel& model, const std::vector<Contact>& found,
-                     double restingSpeed, std::vector<BodyState>& Y, std::vector<int>& count) {
+double resolveContacts(const WorldModel& model, const std::vector<Contact>& found, double restingSpeed,
+                       double reach, std::vector<BodyState>& Y, std::vector<int>& count) {
   for (const Contact& c : found) {
     if (c.depth < -kTouching || c.b < 0) continue;
     ++count[c.a];
@@ -224,8 +320,8 @@ void resolveContacts(const WorldModel& model, const std::vector<Contact>& found,
   }
   std::vector<Contact> contacts;
   mergePairs(model, Y, found, contacts);
-  if (contacts.empty()) return;
-  appendSurfaceContacts(model, Y, contacts);
+  if (contacts.empty()) return 0.0;
+  appendSurfaceContacts(model, Y, reach, contacts);
   // Poses do not change while impulses are exchanged: each body's inverse inertia,
   // each contact's sides and its inverse effective mass along the normal are computed
   // once, not in every Gauss-Seidel pass.
@@ -286,11 +382,7 @@ void resolveContacts(const WorldModel& model, const std::vector<Contact>& found,
   // no longer push it into the floor, which Gauss-Seidel passes alone settle far too
   // slowly at mass ratios of 1e3 and more.
   const std::vector<int> level = stackLevels(Y.size(), contacts);
-  std::vector<size_t> order(contacts.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  auto lower = [&](const Contact& c) { return c.b < 0 ? -1 : std::min(level[c.a], level[c.b]); };
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t x, size_t y) { return lower(contacts[x]) < lower(contacts[y]); });
+  const std::vector<size_t> order = bottomUp(contacts, level);
   for (size_t o : order) {
     const Contact& c = contacts[o];
     if (c.depth < -kTouching || c.b < 0 || level[c.a] == level[c.b]) continue;
@@ -303,27 +395,17 @@ void resolveContacts(const WorldModel& model, const std::vector<Contact>& found,
     if (a.invMass > 0.0) applyImpulse(Y, c.a, a, -j * c.normal);
     if (b.invMass > 0.0) applyImpulse(Y, c.b, b, j * c.normal);
   }
-  // Overlaps removed pair by pair, translation only, from the bottom up: a body on a
-  // surface moves out of it, an upper body moves off the lower one (both by inverse
-  // mass at equal levels). Depths are corrected for the moves made before them.
-  std::vector<Vec3> moved(Y.size(), Vec3::Zero());
-  for (size_t o : order) {
-    const Contact& c = contacts[o];
-    const Vec3 relative = c.b >= 0 ? Vec3(moved[c.a] - moved[c.b]) : moved[c.a];
-    const double depth = c.depth + relative.dot(c.normal);
-    if (depth <= 0.0) continue;
-    double wa = 1.0 / model.bodies[c.a].mass;
-    double wb = c.b >= 0 ? 1.0 / model.bodies[c.b].mass : 0.0;
-    if (c.b >= 0 && level[c.a] != level[c.b]) (level[c.a] < level[c.b] ? wa : wb) = 0.0;
-    const Vec3 da = -depth * wa / (wa + wb) * c.normal;
-    Y[c.a].X += da;
-    moved[c.a] += da;
-    if (c.b >= 0) {
-      const Vec3 db = depth * wb / (wa + wb) * c.normal;
-      Y[c.b].X += db;
-      moved[c.b] += db;
-    }
-  }
+  return correctPositions(model, contacts, level, order, Y);
+}
+
+double separateOverlaps(const WorldModel& model, const std::vector<Contact>& found, double reach,
+                        std::vector<BodyState>& Y) {
+  std::vector<Contact> contacts;
+  mergePairs(model, Y, found, contacts);
+  appendSurfaceContacts(model, Y, reach, contacts);
+  if (contacts.empty()) return 0.0;
+  const std::vector<int> level = stackLevels(Y.size(), contacts);
+  return correctPositions(model, contacts, level, bottomUp(contacts, level), Y);
 }
 
 }  // namespace rigid

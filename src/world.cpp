@@ -121,6 +121,14 @@ void normaliseOrientations(std::vector<BodyState>& Y) {
 // The distance within which bodies count as touching (m): contacts are detected with
 // this margin, so that a body resting on another is answered even with a tiny gap.
 constexpr double kContactMargin = 1e-6;
+// Pairs apart by less than this (m) are detected too, speculatively: they take no
+// impulse, but the position correction, which may lift a body off its support by a
+// step's sinking (v h, millimetres), must know the neighbours it could push it into.
+constexpr double kSpeculativeMargin = 4e-3;
+// Rounds of detection and position correction after the response: when the two
+// largest moves add up to the speculative margin, pairs that were not detected may
+// overlap.
+constexpr int kMaxSeparationRounds = 4;
 
 // Contact response: what happens at an instant rather than over the step. The
 // surfaces need the applied force at the new state to tell whether static friction
@@ -144,9 +152,18 @@ constexpr double kContactMargin = 1e-6;
 #endif
 #if RIGID_WITH_COLLISIONS
   if (CollisionCache* c = data.collision.get()) {
-    if (!detected) c->detector.detect(after, kContactMargin, c->contacts, profileOf(data));
-    Stopwatch response(slotOf(data, &StepProfile::response));
-    resolveContacts(model, c->contacts, restingNormalSpeed(model.gravity, h), after, data.contacts);
+    if (!detected) c->detector.detect(after, kContactMargin, c->contacts, profileOf(data), kSpeculativeMargin);
+    double moved = 0.0;
+    {
+      Stopwatch response(slotOf(data, &StepProfile::response));
+      moved = resolveContacts(model, c->contacts, restingNormalSpeed(model.gravity, h), kSpeculativeMargin, after,
+                              data.contacts);
+    }
+    for (int round = 1; round < kMaxSeparationRounds && moved >= kSpeculativeMargin; ++round) {
+      c->detector.detect(after, kContactMargin, c->contacts, profileOf(data), kSpeculativeMargin);
+      Stopwatch response(slotOf(data, &StepProfile::response));
+      moved = separateOverlaps(model, c->contacts, kSpeculativeMargin, after);
+    }
   }
 #endif
 }
@@ -199,7 +216,8 @@ int advance(const WorldModel& model, WorldData& data, double tau, std::vector<Bo
   const bool bouncy = std::any_of(model.bodies.begin(), model.bodies.end(),
                                   [](const BodyConstants& b) { return b.collides && b.restitution > 0.0; });
   if (CollisionCache* c = data.collision.get(); c && (bouncy || forResponse)) {
-    c->detector.detect(Y, forResponse ? kContactMargin : 0.0, c->contacts, profileOf(data));
+    c->detector.detect(Y, forResponse ? kContactMargin : 0.0, c->contacts, profileOf(data),
+                       forResponse ? kSpeculativeMargin : 0.0);
     return bouncy && anyContactImpact(model, c->contacts, Y, restingNormalSpeed(model.gravity, h));
   }
 #endif

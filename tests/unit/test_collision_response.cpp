@@ -1,0 +1,105 @@
+// Collision response: the position correction leaves no overlap, neither with the
+// partners it answered nor with neighbours its moves push a body into, against
+// positions worked out here (touching stacks: z_i = (i + 1/2) edge).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "collision_detection.h"
+#include "collision_response.h"
+#include "world.h"
+
+namespace {
+
+using rigid::Vec3;
+
+constexpr double kEdge = 0.1;  // m, cube edge
+
+rigid::BodyConstants cube(const Vec3& position) {
+  rigid::BodyConstants b;
+  b.shape.type = rigid::ShapeType::Box;
+  b.shape.size = Vec3::Constant(kEdge);
+  rigid::setMass(b, 1.0);
+  b.restitution = 0.0;
+  b.staticFriction = b.kineticFriction = 0.6;
+  b.start.position = position;
+  return b;
+}
+
+// Top face at z = 0, from -5 to 5 in x and y.
+rigid::Surface floorSurface() {
+  rigid::Surface s;
+  s.name = "floor";
+  s.min = Vec3(-5, -5, -1);
+  s.max = Vec3(5, 5, 0);
+  s.restitution = 0.0;
+  rigid::finishSurface(s);
+  return s;
+}
+
+// Deepest overlap (m) of the poses Y: body pairs from a fresh detection with margin 0,
+// and each cube's bottom below the floor's top face.
+double deepestOverlap(const rigid::WorldModel& m, const std::vector<rigid::BodyState>& Y) {
+  rigid::CollisionDetector probe(m, std::vector<bool>(m.bodies.size(), true));
+  std::vector<rigid::Contact> contacts;
+  probe.detect(Y, 0.0, contacts);
+  double deepest = 0.0;
+  for (const rigid::Contact& c : contacts)
+    if (c.b >= 0) deepest = std::max(deepest, c.depth);
+  for (const rigid::BodyState& y : Y) {
+    const double reach = y.q.normalized().toRotationMatrix().row(2).cwiseAbs().sum() * 0.5 * kEdge;
+    deepest = std::max(deepest, reach - y.X.z());
+  }
+  return deepest;
+}
+
+}  // namespace
+
+// A column of three cubes: the middle one sunk 3 mm into the bottom one, the top one
+// 1 mm above the middle one (not touching). Lifting the middle cube out of the bottom
+// one pushes it 2 mm into the top one, which must move too: the stack ends touching,
+// z_i = (i + 1/2) edge, with momenta untouched (positions only).
+TEST(CollisionResponse, LiftingABodyOutOfItsSupportPushesTheOneAboveIt) {
+  rigid::WorldModel m;
+  m.surfaces = {floorSurface()};
+  const double sunk = 0.003, gap = 0.001;
+  const double z1 = 1.5 * kEdge - sunk;
+  for (double z : {0.5 * kEdge, z1, z1 + kEdge + gap}) m.bodies.push_back(cube(Vec3(0, 0, z)));
+  std::vector<rigid::BodyState> Y;
+  for (const rigid::BodyConstants& b : m.bodies) Y.push_back(rigid::initialState(b));
+  Y[2].P = Vec3(0, 0, -0.5);  // a falling top cube keeps its momentum
+  rigid::CollisionDetector detector(m, std::vector<bool>(3, true));
+  std::vector<rigid::Contact> contacts;
+  const double reach = 0.004;  // m: the gap is within it
+  detector.detect(Y, 1e-6, contacts, nullptr, reach);
+  std::vector<int> count(3, 0);
+  rigid::resolveContacts(m, contacts, 2.0 * 9.81 * 2e-3, reach, Y, count);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(Y[i].X.z(), (i + 0.5) * kEdge, 1e-6) << "cube " << i;
+  EXPECT_LE(deepestOverlap(m, Y), 1e-6);
+  EXPECT_EQ(Y[2].P, Vec3(0, 0, -0.5));  // apart when detected: no impulse
+}
+
+// Ten cubes dropped in a column, 2 cm apart, land on each other and on the floor
+// (xi = 0): no state the steps hand back overlaps by more than 0.1 mm, and after 1.5 s
+// the column rests touching: its centre of mass at N edge / 2, every cube at rest.
+TEST(CollisionResponse, ColumnOfTenCubesLandsWithoutOverlapAndSettles) {
+  rigid::WorldModel m;
+  m.surfaces = {floorSurface()};
+  m.surfaces[0].staticFriction = m.surfaces[0].kineticFriction = 0.6;
+  const int n = 10;
+  const double pitch = kEdge + 0.02;
+  for (int i = 0; i < n; ++i) m.bodies.push_back(cube(Vec3(0, 0, 0.5 * kEdge + 0.02 + i * pitch)));
+  rigid::WorldData data = rigid::initialData(m);
+  const double h = 2e-3;
+  double deepest = 0.0;
+  for (int k = 0; k < 750; ++k) {
+    ASSERT_TRUE(rigid::step(m, data, h).ok) << "step " << k;
+    deepest = std::max(deepest, deepestOverlap(m, data.Y));
+  }
+  EXPECT_LE(deepest, 1e-4);
+  double zc = 0.0;
+  for (const rigid::BodyState& y : data.Y) zc += y.X.z() / n;
+  EXPECT_NEAR(zc, 0.5 * n * kEdge, 1e-4);
+  for (int i = 0; i < n; ++i) EXPECT_LT(data.aux[i].V.norm(), 1e-2) << "cube " << i;
+}

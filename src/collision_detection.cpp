@@ -2,7 +2,6 @@
 
 #include <chrono>
 
-#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cylinder.h>
@@ -20,6 +19,8 @@
 #include <string>
 #include <tuple>
 #include <utility>
+
+#include "broadphase.h"
 
 namespace rigid {
 
@@ -373,10 +374,6 @@ std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const Geo& g) {
   return nullptr;
 }
 
-void* slotTag(int slot) { return reinterpret_cast<void*>(static_cast<std::intptr_t>(slot)); }
-int tagSlot(const fcl::CollisionObjectd* o) {
-  return static_cast<int>(reinterpret_cast<std::intptr_t>(o->getUserData()));
-}
 
 }  // namespace
 
@@ -399,7 +396,9 @@ struct CollisionDetector::Impl {
   std::vector<Geo> geo;               // per slot
   std::vector<Vec3> surfaceHalfAabb;  // per surface: half extents of its world AABB
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;  // per slot
-  fcl::DynamicAABBTreeCollisionManagerd manager;
+  SweepAndPrune broadphase;
+  std::vector<Vec3> lo, hi;           // scratch of detect(): each slot's bounding box
+  std::vector<std::pair<int, int>> overlapping;  // scratch of detect(): slots whose boxes overlap
   std::vector<Pair> pairs;            // scratch of detect()
   fcl::CollisionRequestd request;
   fcl::CollisionResultd result;
@@ -408,16 +407,14 @@ struct CollisionDetector::Impl {
 
   bool isBody(int slot) const { return slot < nBodySlots; }
 
-  static bool collect(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data) {
-    Impl& self = *static_cast<Impl*>(data);
-    int s1 = tagSlot(o1), s2 = tagSlot(o2);
-    if (!self.isBody(s1) && !self.isBody(s2)) return false;  // surface-surface
-    if (!self.isBody(s1) || (self.isBody(s2) && self.slotIndex[s2] < self.slotIndex[s1])) std::swap(s1, s2);
-    Pair p{self.slotIndex[s1], -1, -1, s1, s2};
-    if (self.isBody(s2)) p.b = self.slotIndex[s2];
-    else p.surface = self.slotIndex[s2];
-    self.pairs.push_back(p);
-    return false;  // never stop early
+  // The candidate pair of two slots whose boxes overlap; false for two surfaces.
+  bool candidate(int s1, int s2, Pair& p) const {
+    if (!isBody(s1) && !isBody(s2)) return false;
+    if (!isBody(s1) || (isBody(s2) && slotIndex[s2] < slotIndex[s1])) std::swap(s1, s2);
+    p = Pair{slotIndex[s1], -1, -1, s1, s2};
+    if (isBody(s2)) p.b = slotIndex[s2];
+    else p.surface = slotIndex[s2];
+    return true;
   }
 
   std::vector<fcl::ContactPointd> boxContacts;  // scratch of the box-box routine
@@ -461,16 +458,13 @@ CollisionDetector::CollisionDetector(const WorldModel& model, const std::vector<
     d.geo.push_back(g);
     d.surfaceHalfAabb.push_back(aabbHalfExtent(g));
   }
-  std::vector<fcl::CollisionObjectd*> raw;
   for (size_t slot = 0; slot < d.geo.size(); ++slot) {
     const Geo& g = d.geo[slot];
     auto obj = std::make_unique<fcl::CollisionObjectd>(makeGeometry(g), g.R, g.p);
-    obj->setUserData(slotTag(static_cast<int>(slot)));
-    raw.push_back(obj.get());
     d.objects.push_back(std::move(obj));
   }
-  d.manager.registerObjects(raw);
-  d.manager.setup();
+  d.lo.resize(d.geo.size());
+  d.hi.resize(d.geo.size());
   d.pairs.reserve(4 * d.geo.size());
   d.boxContacts.reserve(8);
 
@@ -495,31 +489,28 @@ void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, s
   margin = std::max(margin, 0.0);
   speculative = std::max(speculative, margin);
   out.clear();
-  // Transforms and AABBs. FCL's computeAABB bounds a turned shape by the cube around
-  // its bounding sphere; the AABB is then set to the shape's tight one, grown by half
-  // the margin, so that two shapes closer than the margin are candidates.
+  // Transforms and bounding boxes: each shape's tight axis-aligned box, grown by half
+  // the speculative distance, so that two shapes closer than it are candidates.
   const Vec3 grow = Vec3::Constant(0.5 * speculative);
   for (int slot = 0; slot < static_cast<int>(d.geo.size()); ++slot) {
     Geo& g = d.geo[slot];
-    fcl::CollisionObjectd& obj = *d.objects[slot];
     Vec3 half;
     if (d.isBody(slot)) {
       const BodyState& y = Y[d.slotIndex[slot]];
       g.R = y.q.normalized().toRotationMatrix();
       g.p = y.X;
-      obj.setTransform(g.R, g.p);
-      obj.computeAABB();
+      d.objects[slot]->setTransform(g.R, g.p);
       half = aabbHalfExtent(g);
     } else {
-      half = d.surfaceHalfAabb[d.slotIndex[slot] ];
+      half = d.surfaceHalfAabb[d.slotIndex[slot]];
     }
-    fcl::AABBd& box = const_cast<fcl::AABBd&>(obj.getAABB());  // FCL declares it mutable
-    box.min_ = g.p - half - grow;
-    box.max_ = g.p + half + grow;
+    d.lo[slot] = g.p - half - grow;
+    d.hi[slot] = g.p + half + grow;
   }
-  d.manager.update();
+  d.broadphase.overlaps(d.lo, d.hi, d.overlapping);
   d.pairs.clear();
-  d.manager.collide(&d, &Impl::collect);
+  for (const auto& [s1, s2] : d.overlapping)
+    if (Impl::Pair p; d.candidate(s1, s2, p)) d.pairs.push_back(p);
   std::sort(d.pairs.begin(), d.pairs.end());
   const auto broad = profile ? std::chrono::steady_clock::now() : start;
   for (const Impl::Pair& p : d.pairs) d.narrowphase(p, margin, speculative, out);
@@ -573,6 +564,10 @@ void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, double 
       appendWithinMargin(A, B, oA, oB, margin, proto, out);
       return;
     }
+    // Facing faces (a cube above another): the patch, whose centre is where an impulse
+    // stopping the approach acts without turning the pair; edges and corners: one
+    // point between the two support points.
+    if (appendFacePatch(A, B, n, speculative, proto, out) > 0) return;
     Contact c = proto;
     c.normal = n;
     c.depth = -separation;

@@ -32,14 +32,17 @@ bool anyContactImpact(const WorldModel& model, const std::vector<Contact>& conta
 // Impulses at every contact of Y until none approaches (Gauss-Seidel passes, so that
 // a chain of touching bodies passes an impact on, as in Newton's cradle), then moves
 // overlapping bodies apart along the normal in inverse proportion to their masses
-// (separateOverlaps). `contacts` may hold pairs apart by up to `reach` (m, detected
-// with a speculative distance): they take no impulse, but no move pushes them into
-// each other, and bodies within reach of a surface's top face are not pushed into it.
-// Adds each body's body-body contact points to count. Returns the sum of the two
-// largest distances bodies were moved (m): from the reach on, pairs that were not
-// among the contacts may have been pushed into each other.
-double resolveContacts(const WorldModel& model, const std::vector<Contact>& contacts, double restingSpeed,
-                       double reach, std::vector<BodyState>& Y, std::vector<int>& count);
+// (separateOverlaps). h (s) is the step: approaches slower than a resting body's
+// (restingNormalSpeed) are not bounced. `contacts` may hold pairs apart by up to
+// `reach` (m, detected with a speculative distance): an inelastic pair (xi = 0) among
+// them takes the impulse that keeps it from closing more than its gap in the next
+// step; no move of the correction pushes them into each other, and bodies within
+// reach of a surface's top face are not pushed into it. Adds each body's body-body
+// contact points to count. Returns a bound of how much two bodies' moves by the
+// correction differ (m): from the reach on, pairs that were not among the contacts may
+// have been pushed into each other.
+double resolveContacts(const WorldModel& model, const std::vector<Contact>& contacts, double h, double reach,
+                       std::vector<BodyState>& Y, std::vector<int>& count);
 
 // The position correction alone (positions only, no impulse): overlaps of Y's contacts
 // removed as resolveContacts does. Returns what resolveContacts returns.

@@ -156,8 +156,7 @@ constexpr int kMaxSeparationRounds = 4;
     double moved = 0.0;
     {
       Stopwatch response(slotOf(data, &StepProfile::response));
-      moved = resolveContacts(model, c->contacts, restingNormalSpeed(model.gravity, h), kSpeculativeMargin, after,
-                              data.contacts);
+      moved = resolveContacts(model, c->contacts, h, kSpeculativeMargin, after, data.contacts);
     }
     for (int round = 1; round < kMaxSeparationRounds && moved >= kSpeculativeMargin; ++round) {
       c->detector.detect(after, kContactMargin, c->contacts, profileOf(data), kSpeculativeMargin);

@@ -336,8 +336,9 @@ Vec3 touchingNormal(const Geo& A, const Geo& B) {
 // normals of both, cross products of their edges), with the axis n (a -> b) that
 // gives it. A positive value is a lower bound of their distance: moving b by less than
 // it along n (relative to a) cannot make them overlap, which is all that the position
-// correction asks of a pair that is apart. Costs far less than GJK.
-double boxSeparation(const Geo& A, const Geo& B, Vec3& n) {
+// correction asks of a pair that is apart. Costs far less than GJK. Stops at the first
+// axis that separates them by `enough` or more (face axes first: most pairs end there).
+double boxSeparation(const Geo& A, const Geo& B, Vec3& n, double enough) {
   const Vec3 d = B.p - A.p;
   double best = -std::numeric_limits<double>::infinity();
   auto consider = [&](const Vec3& axis) {
@@ -351,12 +352,12 @@ double boxSeparation(const Geo& A, const Geo& B, Vec3& n) {
       n = along >= 0.0 ? u : Vec3(-u);
     }
   };
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < 3 && best < enough; ++i) {
     consider(A.R.col(i));
     consider(B.R.col(i));
   }
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) consider(A.R.col(i).cross(B.R.col(j)));
+  for (int i = 0; i < 3 && best < enough; ++i)
+    for (int j = 0; j < 3 && best < enough; ++j) consider(A.R.col(i).cross(B.R.col(j)));
   return best;
 }
 
@@ -533,11 +534,36 @@ void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, double 
   proto.surface = pr.surface;
 
   if (A.type == ShapeType::Box && B.type == ShapeType::Box) {
-    // Box-box (and box-surface): FCL's own box-box routine (ODE's dBoxBox2, the one
-    // fcl::collide runs for this pair), called directly into a reused buffer so that
-    // the hot pair of a box pile allocates nothing. Its normal points from box 1 to 2.
-    boxContacts.clear();
     Vec3 n;
+    // Apart: the separating-axis test bounds the gap from below, cheaply, and most
+    // candidate pairs of a pile end here (their bounding boxes overlap, they do not).
+    // Only a bound below the margin needs FCL's distance (GJK, costly) for the touching
+    // contact's points; a pair within the speculative distance is one contact along
+    // that axis, or its facing patch.
+    if (speculative > 0.0) {
+      const double separation = boxSeparation(A, B, n, speculative);
+      if (separation >= speculative) return;
+      if (separation > 0.0) {
+        if (separation < margin) {
+          appendWithinMargin(A, B, oA, oB, margin, proto, out);
+          return;
+        }
+        // Facing faces (a cube above another): the patch, whose centre is where an
+        // impulse stopping the approach acts without turning the pair; edges and
+        // corners: one point between the two support points.
+        if (appendFacePatch(A, B, n, speculative, proto, out) > 0) return;
+        Contact c = proto;
+        c.normal = n;
+        c.depth = -separation;
+        c.point = 0.5 * (supportPoint(A, n) + supportPoint(B, -n));
+        out.push_back(c);
+        return;
+      }
+    }
+    // Overlapping: FCL's own box-box routine (ODE's dBoxBox2, the one fcl::collide
+    // runs for this pair), called directly into a reused buffer so that the hot pair of
+    // a box pile allocates nothing. Its normal points from box 1 to 2.
+    boxContacts.clear();
     double depth = 0.0;
     int code = 0;
     fcl::detail::boxBox2<double>(2.0 * A.half, oA->getTransform(), 2.0 * B.half, oB->getTransform(), n, &depth,
@@ -553,26 +579,8 @@ void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, double 
       }
       return;
     }
-    if (speculative <= 0.0) return;
-    // Apart: the separating-axis test bounds the gap from below, cheaply. Only a bound
-    // below the margin needs FCL's distance (GJK, costly) for the touching contact's
-    // points; a pair within the speculative distance is one contact along that axis,
-    // and most neighbours in a pile end here.
-    const double separation = boxSeparation(A, B, n);
-    if (separation >= speculative) return;
-    if (separation < margin) {
-      appendWithinMargin(A, B, oA, oB, margin, proto, out);
-      return;
-    }
-    // Facing faces (a cube above another): the patch, whose centre is where an impulse
-    // stopping the approach acts without turning the pair; edges and corners: one
-    // point between the two support points.
-    if (appendFacePatch(A, B, n, speculative, proto, out) > 0) return;
-    Contact c = proto;
-    c.normal = n;
-    c.depth = -separation;
-    c.point = 0.5 * (supportPoint(A, n) + supportPoint(B, -n));
-    out.push_back(c);
+    // touching to rounding (the two tests disagree at a gap of zero)
+    appendWithinMargin(A, B, oA, oB, margin, proto, out);
     return;
   }
 

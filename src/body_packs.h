@@ -3,6 +3,8 @@
 // and four independent bodies hide each other's latencies (a rotation is a chain of
 // dependent products and one division). Used where every body of a world takes the
 // same formula: free bodies' Runge-Kutta stages and the auxiliaries after a step.
+// The small functions are forced inline (EIGEN_STRONG_INLINE): a call would spill the
+// packs to memory, which costs more than the arithmetic.
 #pragma once
 
 #include <algorithm>
@@ -29,7 +31,7 @@ struct RotationPack {
 inline size_t laneBody(size_t first, int lane, size_t n) { return std::min(first + lane, n - 1); }
 
 // R of q / |q| for q of any norm, as rotationOf().
-inline RotationPack rotationOf(const QuatPack& q) {
+EIGEN_STRONG_INLINE RotationPack rotationOf(const QuatPack& q) {
   const Pack s = 2.0 / (q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
   const Pack xs = q.x * s, ys = q.y * s, zs = q.z * s;
   const Pack wx = q.w * xs, wy = q.w * ys, wz = q.w * zs;
@@ -41,10 +43,10 @@ inline RotationPack rotationOf(const QuatPack& q) {
 }
 
 // M v and M^T v for a 3x3 matrix given row by row.
-inline void multiply(const Pack (&M)[9], const Pack (&v)[3], Pack (&out)[3]) {
+EIGEN_STRONG_INLINE void multiply(const Pack (&M)[9], const Pack (&v)[3], Pack (&out)[3]) {
   for (int i = 0; i < 3; ++i) out[i] = M[3 * i] * v[0] + M[3 * i + 1] * v[1] + M[3 * i + 2] * v[2];
 }
-inline void multiplyTransposed(const Pack (&M)[9], const Pack (&v)[3], Pack (&out)[3]) {
+EIGEN_STRONG_INLINE void multiplyTransposed(const Pack (&M)[9], const Pack (&v)[3], Pack (&out)[3]) {
   for (int i = 0; i < 3; ++i) out[i] = M[i] * v[0] + M[3 + i] * v[1] + M[6 + i] * v[2];
 }
 

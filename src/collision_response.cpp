@@ -103,25 +103,6 @@ bool onTopFace(const WorldModel& model, const std::vector<BodyState>& Y, const C
 
 }  // namespace
 
-double halfThickness(const Shape& s) {
-  switch (s.type) {
-    case ShapeType::Sphere:
-    case ShapeType::Capsule: return s.radius;
-    case ShapeType::Box: return 0.5 * s.size.minCoeff();
-    case ShapeType::Cylinder: return std::min(s.radius, 0.5 * s.length);
-  }
-  return 0.0;
-}
-
-double boundingRadius(const Shape& s) {
-  switch (s.type) {
-    case ShapeType::Sphere: return s.radius;
-    case ShapeType::Capsule: return s.radius + 0.5 * s.length;
-    case ShapeType::Box: return 0.5 * s.size.norm();
-    case ShapeType::Cylinder: return std::hypot(s.radius, 0.5 * s.length);
-  }
-  return 0.0;
-}
 
 bool anyContactImpact(const WorldModel& model, const std::vector<Contact>& contacts,
                       const std::vector<BodyState>& Y, double restingSpeed) {

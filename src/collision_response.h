@@ -18,12 +18,6 @@ struct CollisionCache {
   std::vector<double> travel;           // m, scratch: each body's reach in a step
 };
 
-// Half the smallest dimension of a shape (m): how far a body may move between two
-// detections without passing through it unseen.
-double halfThickness(const Shape& shape);
-// Radius (m) of the sphere about the centre of mass that holds the shape.
-double boundingRadius(const Shape& shape);
-
 // Whether some contact is an impact: overlapping while approaching faster than
 // restingSpeed (m/s). The step then locates the instant of impact.
 bool anyContactImpact(const WorldModel& model, const std::vector<Contact>& contacts,

@@ -23,7 +23,21 @@ void accumulateForces(const WorldModel& model, const BodyConstants& body, const 
 
 }  // namespace
 
-bool forcesHeldOverStep(const WorldModel& model) { return model.media.empty() && model.surfaces.empty(); }
+bool forcesHeldOverStep(const WorldModel& model, const BodyConstants& body, const BodyInput& input,
+                        const BodyState& y, double h) {
+  if (!model.media.empty()) return false;
+  if (model.surfaces.empty()) return true;
+#if RIGID_WITH_SURFACES
+  // A stage's position is within h times its velocity of X, and the stages' velocities
+  // are within h times the applied acceleration of V.
+  const double accel = model.gravity.norm() + input.force.norm() / body.mass;
+  const double travel = h * (y.P.norm() / body.mass + h * accel);
+  return clearOfSurfaces(model.surfaces, body.shape, y.X, travel);
+#else
+  (void)body, (void)input, (void)y, (void)h;
+  return false;
+#endif
+}
 
 void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
                              const BodyInput& in, const BodyState& y, BodyAux& aux) {

@@ -17,10 +17,12 @@ inline Eigen::Vector4d orientationRate(const Vec3& omega, const Quat& q) {
   return 0.5 * (w * q).coeffs();
 }
 
-// Whether every force on every body stays constant over a step: gravity and the
-// inputs (held over each step) only, with no media (buoyancy and drag follow the
-// state) and no surfaces (support and friction follow it too).
-bool forcesHeldOverStep(const WorldModel& model);
+// Whether every force on a body stays constant over a step of length h from y: gravity
+// and the inputs (held over each step) only, with no media (buoyancy and drag follow
+// the state) and no surface within what the body can travel in the step (support and
+// friction follow the state too).
+bool forcesHeldOverStep(const WorldModel& model, const BodyConstants& body, const BodyInput& input,
+                        const BodyState& y, double h);
 
 // Every force on one body but the surfaces': gravity, the inputs, the media.
 // Adds to nothing: sets aux.F and aux.T. aux's V, R and omega must be those of y.

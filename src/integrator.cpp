@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <utility>
 
 #include "body_packs.h"
@@ -33,7 +34,7 @@ void eulerStep(const WorldModel& m, WorldData& d, double h, std::vector<BodyStat
 // dq/dt = 1/2 q (0, omega_body) with omega_body = Ibody^-1 R^T L, for q of any norm.
 // The body-frame form equals 1/2 (0, omega) q and saves the product by R that the
 // world-frame omega needs.
-QuatPack orientationRate(const QuatPack& q, const Pack (&L)[3], const Pack (&Iinv)[9]) {
+EIGEN_STRONG_INLINE QuatPack orientationRate(const QuatPack& q, const Pack (&L)[3], const Pack (&Iinv)[9]) {
   const RotationPack R = rotationOf(q);
   Pack Lbody[3], half[3];
   multiplyTransposed(R.r, L, Lbody);
@@ -43,7 +44,7 @@ QuatPack orientationRate(const QuatPack& q, const Pack (&L)[3], const Pack (&Iin
           q.w * o2 + q.x * o1 - q.y * o0};
 }
 
-QuatPack plus(const QuatPack& q, double c, const QuatPack& k) {
+EIGEN_STRONG_INLINE QuatPack plus(const QuatPack& q, double c, const QuatPack& k) {
   return {q.w + c * k.w, q.x + c * k.x, q.y + c * k.y, q.z + c * k.z};
 }
 
@@ -53,15 +54,16 @@ QuatPack plus(const QuatPack& q, double c, const QuatPack& k) {
 // gives them; only the orientation needs its four stage derivatives, taken for four
 // bodies at once, with the stages in registers instead of the k arrays. Free bodies
 // are the common case, and this is their cost per step.
-void rk4HeldForcesStep(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
-  const size_t n = d.Y.size();
+void rk4HeldForcesStep(const WorldModel& m, WorldData& d, double h, const std::vector<int>& bodies,
+                       std::vector<BodyState>& next) {
+  const size_t n = bodies.size();
   const double w1 = h / 6.0, w2 = h / 3.0;
   for (size_t first = 0; first < n; first += kLanes) {
     QuatPack q;
     Pack L[3], Lhalf[3], Lend[3], Iinv[9];
-    loadInverseInertia(m.bodies, first, n, Iinv);
     for (int lane = 0; lane < kLanes; ++lane) {
-      const size_t i = laneBody(first, lane, n);
+      const int i = bodies[laneBody(first, lane, n)];
+      for (int e = 0; e < 9; ++e) Iinv[e][lane] = m.bodies[i].IbodyInv(e / 3, e % 3);
       const BodyState& y = d.Y[i];
       BodyAux& aux = d.aux[i];
       accumulateAppliedForces(m, m.bodies[i], d.input[i], y, aux);
@@ -82,7 +84,7 @@ void rk4HeldForcesStep(const WorldModel& m, WorldData& d, double h, std::vector<
                             q.y + (w1 * k1.y + w2 * k2.y + w2 * k3.y + w1 * k4.y),
                             q.z + (w1 * k1.z + w2 * k2.z + w2 * k3.z + w1 * k4.z)};
     for (int lane = 0; lane < kLanes && first + lane < n; ++lane) {
-      const size_t i = first + lane;
+      const int i = bodies[first + lane];
       const BodyState& y = d.Y[i];
       const BodyAux& aux = d.aux[i];
       BodyState& out = next[i];
@@ -94,27 +96,37 @@ void rk4HeldForcesStep(const WorldModel& m, WorldData& d, double h, std::vector<
   }
 }
 
-void rk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
-  if (forcesHeldOverStep(m)) {
-    rk4HeldForcesStep(m, d, h, next);
-    return;
-  }
+// Classic RK4 of the bodies in `bodies` (a body's derivative depends on its own state
+// alone: bodies interact only through contacts, answered after the step).
+void rk4Bodies(const WorldModel& m, WorldData& d, double h, const std::vector<int>& bodies,
+               std::vector<BodyState>& next) {
   std::vector<BodyDerivative>& k1 = d.scratch.k[0];
   std::vector<BodyDerivative>& k2 = d.scratch.k[1];
   std::vector<BodyDerivative>& k3 = d.scratch.k[2];
   std::vector<BodyDerivative>& k4 = d.scratch.k[3];
   std::vector<BodyState>& stage = d.scratch.stage;
-  evaluateDerivative(m, d.input, d.Y, d.aux, k1);
-  addScaled(d.Y, 0.5 * h, k1, stage);
-  evaluateDerivative(m, d.input, stage, d.aux, k2);
-  addScaled(d.Y, 0.5 * h, k2, stage);
-  evaluateDerivative(m, d.input, stage, d.aux, k3);
-  addScaled(d.Y, h, k3, stage);
-  evaluateDerivative(m, d.input, stage, d.aux, k4);
+  auto derivative = [&](const std::vector<BodyState>& Y, std::vector<BodyDerivative>& k) {
+    for (int i : bodies) evaluateBodyDerivative(m, m.bodies[i], d.input[i], Y[i], d.aux[i], k[i]);
+  };
+  auto toStage = [&](double c, const std::vector<BodyDerivative>& k) {
+    for (int i : bodies) {
+      stage[i].X = d.Y[i].X + c * k[i].dX;
+      stage[i].q.coeffs() = d.Y[i].q.coeffs() + c * k[i].dq;
+      stage[i].P = d.Y[i].P + c * k[i].dP;
+      stage[i].L = d.Y[i].L + c * k[i].dL;
+    }
+  };
+  derivative(d.Y, k1);
+  toStage(0.5 * h, k1);
+  derivative(stage, k2);
+  toStage(0.5 * h, k2);
+  derivative(stage, k3);
+  toStage(h, k3);
+  derivative(stage, k4);
   // Each k is scaled before the sum, so that derivatives near the largest double do
   // not overflow in k1 + 2 k2 + 2 k3 + k4 when the step itself is finite.
   const double w1 = h / 6.0, w2 = h / 3.0;
-  for (size_t i = 0; i < d.Y.size(); ++i) {
+  for (int i : bodies) {
     const BodyState& y = d.Y[i];
     BodyState& out = next[i];
     out.X = y.X + (w1 * k1[i].dX + w2 * k2[i].dX + w2 * k3[i].dX + w1 * k4[i].dX);
@@ -122,6 +134,28 @@ void rk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>
     out.P = y.P + (w1 * k1[i].dP + w2 * k2[i].dP + w2 * k3[i].dP + w1 * k4[i].dP);
     out.L = y.L + (w1 * k1[i].dL + w2 * k2[i].dL + w2 * k3[i].dL + w1 * k4[i].dL);
   }
+}
+
+// Bodies whose forces are held over the step (free flight: forcesHeldOverStep) take
+// the packed kernel; the others (near a surface, in a medium) the classic stages.
+void rk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
+  std::vector<int>& held = d.scratch.held;
+  std::vector<int>& felt = d.scratch.felt;
+  const int n = static_cast<int>(d.Y.size());
+  if (m.media.empty() && m.surfaces.empty()) {  // every body in free flight
+    if (static_cast<int>(held.size()) != n || (n > 0 && held.back() != n - 1)) {
+      held.resize(n);
+      std::iota(held.begin(), held.end(), 0);
+    }
+    rk4HeldForcesStep(m, d, h, held, next);
+    return;
+  }
+  held.clear();
+  felt.clear();
+  for (int i = 0; i < n; ++i)
+    (forcesHeldOverStep(m, m.bodies[i], d.input[i], d.Y[i], h) ? held : felt).push_back(i);
+  if (!held.empty()) rk4HeldForcesStep(m, d, h, held, next);
+  if (!felt.empty()) rk4Bodies(m, d, h, felt, next);
 }
 
 // The free rotation of one body for a time tau with world angular momentum L, split

@@ -1,5 +1,6 @@
 #include "shape.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rigid {
@@ -61,6 +62,26 @@ Vec3 solidPrincipalInertia(const Shape& s, double m) {
     }
   }
   return Vec3::Zero();
+}
+
+double halfThickness(const Shape& s) {
+  switch (s.type) {
+    case ShapeType::Sphere:
+    case ShapeType::Capsule: return s.radius;
+    case ShapeType::Box: return 0.5 * s.size.minCoeff();
+    case ShapeType::Cylinder: return std::min(s.radius, 0.5 * s.length);
+  }
+  return 0.0;
+}
+
+double boundingRadius(const Shape& s) {
+  switch (s.type) {
+    case ShapeType::Sphere: return s.radius;
+    case ShapeType::Capsule: return s.radius + 0.5 * s.length;
+    case ShapeType::Box: return 0.5 * s.size.norm();
+    case ShapeType::Cylinder: return std::hypot(s.radius, 0.5 * s.length);
+  }
+  return 0.0;
 }
 
 }  // namespace rigid

@@ -16,6 +16,13 @@ struct Shape {
 
 const char* shapeTypeName(ShapeType type);
 
+// Half the smallest dimension of a shape (m): how far a body may move between two
+// detections without passing through it unseen.
+double halfThickness(const Shape& shape);
+
+// Radius (m) of the sphere about the centre of mass that holds the shape.
+double boundingRadius(const Shape& shape);
+
 // Volume of the solid, m^3.
 double shapeVolume(const Shape& shape);
 

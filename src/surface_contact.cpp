@@ -45,6 +45,15 @@ Vec3 slipVelocity(const Vec3& V, const Vec3& omega, const Vec3& r, const Vec3& n
 
 }  // namespace
 
+bool clearOfSurfaces(const std::vector<Surface>& surfaces, const Shape& shape, const Vec3& X, double travel) {
+  const double reach = boundingRadius(shape) + travel + kContactDistance;
+  for (const Surface& s : surfaces) {
+    const Vec3 outside = ((s.R_WS.transpose() * (X - s.centre)).cwiseAbs() - s.halfExtent).cwiseMax(0.0);
+    if (outside.squaredNorm() <= reach * reach) return false;
+  }
+  return true;
+}
+
 double restingNormalSpeed(const Vec3& gravity, double h) { return 2.0 * gravity.norm() * h + 1e-9; }
 
 double combineCoefficients(double a, double b) { return std::sqrt(a * b); }

@@ -23,6 +23,12 @@ struct SurfaceContact {
 
 SurfaceContact surfaceContact(const Surface& surface, const BodyConstants& body, const BodyState& y);
 
+// Whether a body whose centre of mass is at X stays clear of every surface while it
+// moves by up to `travel` (m): the sphere that holds it (boundingRadius) is farther
+// than that from each surface's box. Such a body feels no surface force in the step and
+// needs no landing: the per-body checks are skipped.
+bool clearOfSurfaces(const std::vector<Surface>& surfaces, const Shape& shape, const Vec3& X, double travel);
+
 // Normal speed (m/s) below which an impact does not bounce and a body may rest: what
 // gravity adds in two steps, so that a resting body's per-step sinking never bounces.
 double restingNormalSpeed(const Vec3& gravity, double h);

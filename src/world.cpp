@@ -54,6 +54,8 @@ WorldData initialData(const WorldModel& model) {
   d.scratch.y.resize(n);
   d.scratch.y4.resize(n);
   d.scratch.u.resize(n);
+  d.scratch.held.reserve(n);
+  d.scratch.felt.reserve(n);
   for (auto& k : d.scratch.k) k.resize(n);
   refreshAuxiliaries(model, d);
   d.audit.carried.assign(n, 1.0);
@@ -142,6 +144,7 @@ constexpr int kMaxSeparationRounds = 4;
   if (!model.surfaces.empty()) {
     Stopwatch response(slotOf(data, &StepProfile::response));
     for (size_t i = 0; i < after.size(); ++i) {
+      if (clearOfSurfaces(model.surfaces, model.bodies[i].shape, after[i].X, 0.0)) continue;
       BodyAux& aux = data.aux[i];
       computeAuxiliaries(model.bodies[i], after[i], aux);
       accumulateAppliedForces(model, model.bodies[i], data.input[i], after[i], aux);

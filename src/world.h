@@ -38,6 +38,7 @@ struct Scratch {
   std::vector<BodyDerivative> k[7];
   std::vector<BodyState> y, y4;   // the adaptive method's current state and its 4th-order solution
   std::vector<Vec3> u;            // Lie-group stages: rotation vector of each body
+  std::vector<int> held, felt;    // RK4: bodies whose forces are held over the step, and the others
   double adaptiveStep = 0.0;      // s, the adaptive method's next trial step (0: none yet)
 };
 

@@ -339,25 +339,40 @@ Vec3 touchingNormal(const Geo& A, const Geo& B) {
 // correction asks of a pair that is apart. Costs far less than GJK. Stops at the first
 // axis that separates them by `enough` or more (face axes first: most pairs end there).
 double boxSeparation(const Geo& A, const Geo& B, Vec3& n, double enough) {
-  const Vec3 d = B.p - A.p;
+  // In A's frame (Gottschalk's OBB test): C = A^T B, t = A^T (pB - pA). Each axis's
+  // separation is then a few products of C, t and the half extents.
+  const Mat3 C = A.R.transpose() * B.R;
+  const Mat3 absC = C.cwiseAbs();
+  const Vec3 t = A.R.transpose() * (B.p - A.p);
+  const Vec3& a = A.half;
+  const Vec3& b = B.half;
   double best = -std::numeric_limits<double>::infinity();
-  auto consider = [&](const Vec3& axis) {
-    const double len = axis.norm();
-    if (len < 1e-9) return;  // parallel edges: their axis is one of the face normals
-    const Vec3 u = axis / len;
-    const double along = u.dot(d);
-    const double sep = std::abs(along) - supportExtent(A, u) - supportExtent(B, u);
-    if (sep > best) {
-      best = sep;
-      n = along >= 0.0 ? u : Vec3(-u);
-    }
-  };
+  Vec3 axis = Vec3::Zero();  // the best axis, world frame, unit, a -> b
   for (int i = 0; i < 3 && best < enough; ++i) {
-    consider(A.R.col(i));
-    consider(B.R.col(i));
+    const double sepA = std::abs(t[i]) - a[i] - absC.row(i).dot(b);  // A's face normal i
+    if (sepA > best) best = sepA, axis = t[i] >= 0.0 ? Vec3(A.R.col(i)) : Vec3(-A.R.col(i));
+    const double along = C.col(i).dot(t);                             // B's face normal i
+    const double sepB = std::abs(along) - absC.col(i).dot(a) - b[i];
+    if (sepB > best) best = sepB, axis = along >= 0.0 ? Vec3(B.R.col(i)) : Vec3(-B.R.col(i));
   }
-  for (int i = 0; i < 3 && best < enough; ++i)
-    for (int j = 0; j < 3 && best < enough; ++j) consider(A.R.col(i).cross(B.R.col(j)));
+  for (int i = 0; i < 3 && best < enough; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3 && best < enough; ++j) {
+      const double len = std::sqrt(std::max(0.0, 1.0 - C(i, j) * C(i, j)));
+      if (len < 1e-9) continue;  // parallel edges: their axis is one of the face normals
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double along = t[i2] * C(i1, j) - t[i1] * C(i2, j);  // d . (A_i x B_j)
+      const double ra = a[i1] * absC(i2, j) + a[i2] * absC(i1, j);
+      const double rb = b[j1] * absC(i, j2) + b[j2] * absC(i, j1);
+      const double sep = (std::abs(along) - ra - rb) / len;
+      if (sep > best) {
+        best = sep;
+        const Vec3 u = A.R.col(i).cross(B.R.col(j)) / len;
+        axis = along >= 0.0 ? u : Vec3(-u);
+      }
+    }
+  }
+  n = axis;
   return best;
 }
 

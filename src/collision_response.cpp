@@ -165,6 +165,7 @@ void mergePairs(const WorldModel& model, const std::vector<BodyState>& Y,
 void appendSurfaceContacts(const WorldModel& model, const std::vector<BodyState>& Y, double reach,
                            std::vector<Contact>& out) {
   for (size_t i = 0; i < Y.size(); ++i) {
+    if (clearOfSurfaces(model.surfaces, model.bodies[i].shape, Y[i].X, std::max(reach, kTouching))) continue;
     for (size_t s = 0; s < model.surfaces.size(); ++s) {
       const SurfaceContact sc = surfaceContact(model.surfaces[s], model.bodies[i], Y[i]);
       if (!sc.overFace || sc.gap > std::max(reach, kTouching)) continue;
@@ -320,6 +321,10 @@ double resolveContacts(const WorldModel& model, const std::vector<Contact>& foun
     Vec3 v = Vec3::Zero(), omega = Vec3::Zero();
   };
   std::vector<Motion> motion(Y.size());
+  // Each body's count of impulses so far: a row whose two bodies took none since it was
+  // last found settled is still settled, and later passes skip it.
+  std::vector<unsigned> version(Y.size(), 0u);
+  auto versionOf = [&](int body) { return body < 0 ? 0u : version[body]; };
   auto pointVelocity = [&](int body, const Side& s) -> Vec3 {
     return body < 0 ? Vec3::Zero() : Vec3(motion[body].v + motion[body].omega.cross(s.r));
   };
@@ -327,6 +332,7 @@ double resolveContacts(const WorldModel& model, const std::vector<Contact>& foun
   // given (dOmega).
   auto push = [&](int body, const Side& s, const Vec3& J, const Vec3& rxJ, const Vec3& dOmega) {
     if (body < 0) return;
+    ++version[body];
     Y[body].P += J;
     Y[body].L += rxJ;
     motion[body].v += s.invMass * J;
@@ -340,6 +346,8 @@ double resolveContacts(const WorldModel& model, const std::vector<Contact>& foun
     double closing;     // m/s, approach speed that closes a speculative contact's gap in h (0: touching)
     Vec3 raXn, rbXn;    // r x n of each side
     Vec3 dOmegaA, dOmegaB;  // I^-1 (r x n) of each side: its spin per unit impulse along n
+    bool settled = false;   // found settled with its bodies at these versions:
+    unsigned versionA = 0, versionB = 0;
   };
   std::vector<Row> rows;
   rows.reserve(contacts.size());
@@ -367,8 +375,9 @@ double resolveContacts(const WorldModel& model, const std::vector<Contact>& foun
   }
   for (int pass = 0; pass < kMaxPasses; ++pass) {
     bool approaching = false;
-    for (const Row& row : rows) {
+    for (Row& row : rows) {
       const Contact& c = *row.c;
+      if (row.settled && row.versionA == versionOf(c.a) && row.versionB == versionOf(c.b)) continue;
       const Side& a = row.a;
       const Side& b = row.b;
       const Vec3& n = c.normal;
@@ -377,7 +386,10 @@ double resolveContacts(const WorldModel& model, const std::vector<Contact>& foun
       // less than 1 % of what gravity alone does in the step, which the position
       // correction takes out; without gravity, below 1e-9 m/s. A pile of 1000 cubes
       // then needs ~20 passes instead of ~140 for 1e-9 m/s.
-      if (vrel >= -row.closing - std::max(1e-9, 1e-2 * restingSpeed)) continue;
+      row.settled = vrel >= -row.closing - std::max(1e-9, 1e-2 * restingSpeed);
+      row.versionA = versionOf(c.a);
+      row.versionB = versionOf(c.b);
+      if (row.settled) continue;
       approaching = true;
       // The seed's j = -(1 + xi) vrel / (1/Ma + 1/Mb + n.[(Ia^-1 (ra x n)) x ra + ...]);
       // an approach slower than a resting body's is not bounced (xi taken as 0). Apart

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -58,15 +59,44 @@ double deepestPenetration(const rigid::Scene& scene, const rigid::WorldData& dat
   return deepest;
 }
 
-// Deepest overlap (m) in the state the step hands back (what the FMU outputs), from a
-// fresh detection of Y by a probe detector of the benchmark's own: the state after the
-// response's position correction. MuJoCo's -contact.dist is of its state too.
+// Penetration depth (m) of two boxes: the shortest translation that separates them,
+// which for convex polyhedra is the smallest overlap of their projections over the
+// separating-axis candidates (3 + 3 face normals, 9 edge crossings). This is the
+// benchmark's own measure, written apart from the detector's.
+double boxPenetration(const rigid::Vec3& halfA, const rigid::Mat3& Ra, const rigid::Vec3& pa,
+                      const rigid::Vec3& halfB, const rigid::Mat3& Rb, const rigid::Vec3& pb) {
+  const rigid::Vec3 d = pb - pa;
+  double depth = std::numeric_limits<double>::infinity();
+  auto consider = [&](const rigid::Vec3& axis) {
+    const double len = axis.norm();
+    if (len < 1e-9) return;
+    const rigid::Vec3 u = axis / len;
+    const double reach = (Ra.transpose() * u).cwiseAbs().dot(halfA) + (Rb.transpose() * u).cwiseAbs().dot(halfB);
+    depth = std::min(depth, reach - std::abs(u.dot(d)));
+  };
+  for (int i = 0; i < 3; ++i) consider(Ra.col(i)), consider(Rb.col(i));
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) consider(Ra.col(i).cross(Rb.col(j)));
+  return depth;
+}
+
+// Deepest overlap (m) in the state the step hands back (what the FMU outputs): the
+// penetration depth of every pair a fresh detection of Y finds touching (a probe
+// detector of the benchmark's own), and each cube's lowest corner below the floor's
+// top face. MuJoCo's -contact.dist is of its state too. (A contact point's depth from
+// one box's face can exceed the pair's penetration when the two are tilted: it is not
+// how far they overlap.)
 double deepestOverlapOfState(const rigid::Scene& scene, const rigid::WorldData& data,
                              rigid::CollisionDetector& probe, std::vector<rigid::Contact>& contacts) {
   probe.detect(data.Y, 0.0, contacts);
   double deepest = 0.0;
-  for (const rigid::Contact& c : contacts)
-    if (c.b >= 0) deepest = std::max(deepest, c.depth);
+  for (const rigid::Contact& c : contacts) {
+    if (c.b < 0 || c.depth <= 0.0) continue;
+    const rigid::BodyConstants& a = scene.model.bodies[c.a];
+    const rigid::BodyConstants& b = scene.model.bodies[c.b];
+    deepest = std::max(deepest, boxPenetration(0.5 * a.shape.size, data.aux[c.a].R, data.Y[c.a].X,
+                                               0.5 * b.shape.size, data.aux[c.b].R, data.Y[c.b].X));
+  }
   for (size_t i = 0; i < data.Y.size(); ++i) {
     const rigid::Vec3 half = 0.5 * scene.model.bodies[i].shape.size;
     deepest = std::max(deepest, data.aux[i].R.row(2).cwiseAbs().dot(half) - data.Y[i].X.z());

@@ -44,16 +44,27 @@ void SweepAndPrune::overlaps(const std::vector<Vec3>& lo, const std::vector<Vec3
       order_[j + 1] = box;
     }
   }
-  // The boxes in sweep order, contiguous: the inner loop streams through them.
-  sorted_.resize(n);
-  for (int k = 0; k < n; ++k) sorted_[k] = Interval{lo[order_[k]], hi[order_[k]]};
+  // The boxes in sweep order, one contiguous array per bound: the inner loop streams
+  // through the sweep axis's bounds and reads the other two only for boxes it meets.
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  for (Bounds& b : sorted_) b.resize(n);
   for (int k = 0; k < n; ++k) {
-    const Interval& a = sorted_[k];
-    const double end = a.hi[axis];
-    for (int m = k + 1; m < n && sorted_[m].lo[axis] <= end; ++m) {
-      const Interval& b = sorted_[m];
-      if ((a.lo[u] <= b.hi[u]) & (b.lo[u] <= a.hi[u]) & (a.lo[v] <= b.hi[v]) & (b.lo[v] <= a.hi[v]))
+    const Vec3& l = lo[order_[k]];
+    const Vec3& h = hi[order_[k]];
+    sorted_[0][k] = l[axis], sorted_[1][k] = h[axis];
+    sorted_[2][k] = l[u], sorted_[3][k] = h[u];
+    sorted_[4][k] = l[v], sorted_[5][k] = h[v];
+  }
+  const double* loA = sorted_[0].data();
+  const double* hiA = sorted_[1].data();
+  const double* loU = sorted_[2].data();
+  const double* hiU = sorted_[3].data();
+  const double* loV = sorted_[4].data();
+  const double* hiV = sorted_[5].data();
+  for (int k = 0; k < n; ++k) {
+    const double end = hiA[k];
+    for (int m = k + 1; m < n && loA[m] <= end; ++m) {
+      if ((loU[k] <= hiU[m]) & (loU[m] <= hiU[k]) & (loV[k] <= hiV[m]) & (loV[m] <= hiV[k]))
         out.emplace_back(std::min(order_[k], order_[m]), std::max(order_[k], order_[m]));
     }
   }

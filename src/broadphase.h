@@ -20,11 +20,10 @@ class SweepAndPrune {
   void overlaps(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi, std::vector<std::pair<int, int>>& out);
 
  private:
-  struct Interval {
-    Vec3 lo, hi;
-  };
-  std::vector<int> order_;         // box indices by lower bound on axis_
-  std::vector<Interval> sorted_;   // the boxes in that order
+  using Bounds = std::vector<double>;
+  std::vector<int> order_;   // box indices by lower bound on axis_
+  // in that order: lower and upper bounds on the sweep axis, then on the other two
+  Bounds sorted_[6];
   int axis_ = -1;
 };
 

@@ -416,6 +416,8 @@ struct CollisionDetector::Impl {
   std::vector<Vec3> lo, hi;           // scratch of detect(): each slot's bounding box
   std::vector<std::pair<int, int>> overlapping;  // scratch of detect(): slots whose boxes overlap
   std::vector<Pair> pairs;            // scratch of detect()
+  std::vector<Pair> found;            // scratch of detect(): pairs in the sweep's order
+  std::vector<int> firstOf;           // scratch of detect(): where each body's pairs start
   fcl::CollisionRequestd request;
   fcl::CollisionResultd result;
   fcl::DistanceRequestd distanceRequest;
@@ -524,10 +526,19 @@ void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, s
     d.hi[slot] = g.p + half + grow;
   }
   d.broadphase.overlaps(d.lo, d.hi, d.overlapping);
-  d.pairs.clear();
+  // Pairs in one order whatever the sweep's history (a restored FMU state has none):
+  // the response's passes, and so its results, follow it. Counting sort by body, then
+  // each body's few pairs by partner.
+  d.found.clear();
   for (const auto& [s1, s2] : d.overlapping)
-    if (Impl::Pair p; d.candidate(s1, s2, p)) d.pairs.push_back(p);
-  std::sort(d.pairs.begin(), d.pairs.end());
+    if (Impl::Pair p; d.candidate(s1, s2, p)) d.found.push_back(p);
+  d.firstOf.assign(d.bodySlot.size() + 1, 0);
+  for (const Impl::Pair& p : d.found) ++d.firstOf[p.a + 1];
+  for (size_t b = 1; b < d.firstOf.size(); ++b) d.firstOf[b] += d.firstOf[b - 1];
+  d.pairs.resize(d.found.size());
+  for (const Impl::Pair& p : d.found) d.pairs[d.firstOf[p.a]++] = p;  // firstOf[a]: now where a's pairs end
+  for (size_t b = 0, begin = 0; b < d.bodySlot.size(); begin = d.firstOf[b++])
+    std::sort(d.pairs.begin() + begin, d.pairs.begin() + d.firstOf[b]);
   const auto broad = profile ? std::chrono::steady_clock::now() : start;
   for (const Impl::Pair& p : d.pairs) d.narrowphase(p, margin, speculative, out);
   if (profile) {

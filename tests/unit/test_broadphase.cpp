@@ -1,6 +1,7 @@
 // The sweep-and-prune broadphase against the brute-force test of every pair of boxes,
 // over calls in which the boxes move (the kept order is sorted again) and in which
-// the axis of largest spread changes.
+// the axis of largest spread changes, with a few large boxes (a floor, two slabs)
+// among them and boxes on both sides of the origin.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -47,6 +48,11 @@ TEST(Broadphase, SweepAndPruneFindsExactlyTheOverlappingPairs) {
     // two boxes touching exactly count as overlapping
     lo[1] = Vec3(hi[0].x(), lo[0].y(), lo[0].z());
     hi[1] = lo[1] + Vec3::Constant(0.02);
+    // large boxes: a floor under everything, two slabs crossing the cloud
+    lo[2] = Vec3(-10, -10, -1), hi[2] = Vec3(10, 10, 0.05);
+    lo[3] = Vec3(-0.5, 0.4, -0.5), hi[3] = Vec3(3.0, 0.45, 3.0);
+    lo[4] = Vec3(0.2, -0.5, 0.2), hi[4] = Vec3(0.25, 2.0, 2.0);
+    for (int i = 5; i < 40; ++i) lo[i] -= Vec3(0.6, 0.6, 0.6), hi[i] -= Vec3(0.6, 0.6, 0.6);
     sap.overlaps(lo, hi, found);
     std::sort(found.begin(), found.end());
     const std::vector<std::pair<int, int>> expected = bruteForce(lo, hi);

@@ -364,8 +364,14 @@ double boxSeparation(const Geo& A, const Geo& B, Vec3& n, double enough, bool& f
   for (int i = 0; i < 3 && best < enough; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3 && best < enough; ++j) {
-      const double len = std::sqrt(std::max(0.0, 1.0 - C(i, j) * C(i, j)));
-      if (len < 1e-9) continue;  // parallel edges: their axis is one of the face normals
+      // |A_i x B_j| from the cross product itself: sqrt(1 - C_ij^2) loses its digits
+      // for the nearly parallel edges of stacked boxes, and a separation divided by a
+      // wrong small length claims a gap that is not there. Edges within 1e-6 rad of
+      // parallel are skipped: their axis is nearly a face normal, already tested, and
+      // leaving an axis out only makes the bound smaller.
+      const Vec3 cross = A.R.col(i).cross(B.R.col(j));
+      const double len = cross.norm();
+      if (len < 1e-6) continue;
       const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
       const double along = t[i2] * C(i1, j) - t[i1] * C(i2, j);  // d . (A_i x B_j)
       const double ra = a[i1] * absC(i2, j) + a[i2] * absC(i1, j);
@@ -374,7 +380,7 @@ double boxSeparation(const Geo& A, const Geo& B, Vec3& n, double enough, bool& f
       if (sep > best && (sep > 0.0 || sep > faceBest / 1.05)) {
         faceAxis = false;
         best = sep;
-        const Vec3 u = A.R.col(i).cross(B.R.col(j)) / len;
+        const Vec3 u = cross / len;
         axis = along >= 0.0 ? u : Vec3(-u);
       }
     }
@@ -578,12 +584,22 @@ void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, double 
       const double separation = boxSeparation(A, B, n, speculative, faceAxis);
       if (separation >= speculative) return;
       // Overlapping across a face: that face's patch, with the axis of least
-      // penetration as its normal (what FCL's box-box routine would find).
-      if (separation <= 0.0 && faceAxis && appendFacePatch(A, B, n, margin, proto, out) > 0) return;
+      // penetration as its normal (what FCL's box-box routine would find), and the
+      // pair's overlap along it for the position correction.
+      if (separation <= 0.0 && faceAxis) {
+        const size_t first = out.size();
+        if (appendFacePatch(A, B, n, margin, proto, out) > 0) {
+          for (size_t k = first; k < out.size(); ++k) out[k].pairOverlap = -separation;
+          return;
+        }
+      }
       if (separation > 0.0) {
         if (separation < margin) {
+          // touching within the margin by GJK's distance; if that distance is not
+          // within it after all, the pair is still a speculative one
+          const size_t before = out.size();
           appendWithinMargin(A, B, oA, oB, margin, proto, out);
-          return;
+          if (out.size() > before) return;
         }
         // Facing faces (a cube above another): the patch, whose centre is where an
         // impulse stopping the approach acts without turning the pair; edges and

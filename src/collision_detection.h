@@ -1,8 +1,9 @@
 // Collision detection of one world instance: which bodies touch each other or a
-// surface, where, along which normal and how deep. FCL finds the candidate pairs
-// (dynamic AABB tree) and the contact of each pair; face contacts (a box, a
-// cylinder's end or side, a capsule's side against a box face) get the corners of
-// their contact patch so that a resting body is held without rocking.
+// surface, where, along which normal and how deep. A sort and sweep finds the
+// candidate pairs (broadphase.h), a separating-axis test and FCL the contact of each
+// pair; face contacts (a box, a cylinder's end or side, a capsule's side against a
+// box face) get the corners of their contact patch so that a resting body is held
+// without rocking.
 #pragma once
 
 #include <memory>
@@ -21,12 +22,17 @@ struct Contact {
   Vec3 normal = Vec3::Zero();  // unit, world frame, FROM a TO b (from body a into the surface when
                                // b == -1): the direction along which b must move to separate
   double depth = 0.0;          // m, penetration depth; < 0 only with a margin: -gap
+  // m: the translation of b along the normal that separates the pair, where the
+  // detection knows it (box pairs: the overlap of their projections on the normal, by
+  // the separating-axis test), else 0. A tilted box's corner beyond the other's face
+  // counts there but not in the patch's depths.
+  double pairOverlap = 0.0;
 };
 
 // Collision detection of one world instance: FCL geometry for every body that
-// collides and every surface (a box, turned about its centre), one broadphase manager
-// (fcl::DynamicAABBTreeCollisionManagerd) per instance. No global state: many
-// detectors run side by side in threads.
+// collides and every surface (a box, turned about its centre), and one broadphase
+// (its kept sort order) per instance. No global state: many detectors run side by
+// side in threads.
 class CollisionDetector {
  public:
   // `collides[i]` false: body i takes no part (scene switch). Surfaces always take

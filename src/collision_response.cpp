@@ -121,7 +121,8 @@ bool anyContactImpact(const WorldModel& model, const std::vector<Contact>& conta
 namespace {
 
 // One contact per pair: the centroid of its points, their mean normal and the deepest
-// depth. A face contact (a box resting on a box) then takes one impulse through its
+// depth (or the pair's overlap along the normal, when it is larger). A face contact (a
+// box resting on a box) then takes one impulse through its
 // patch's centre instead of corner impulses whose sequential order would leave a
 // spurious spin and make stacks rock. A touching pair merges its touching points; a
 // pair apart (a speculative contact) merges all of its points, so that the impulse
@@ -149,6 +150,7 @@ void mergePairs(const WorldModel& model, const std::vector<BodyState>& Y,
       point += contacts[k].point;
       normal += contacts[k].normal;
       m.depth = std::max(m.depth, contacts[k].depth);
+      if (contacts[k].pairOverlap > 0.0) m.depth = std::max(m.depth, contacts[k].pairOverlap);
       ++n;
     }
     i = end;

@@ -1,5 +1,6 @@
 #include "surface_contact.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rigid {
@@ -77,6 +78,28 @@ double supportDistance(const Shape& s, const Mat3& R, const Vec3& d) {
   return 0.0;
 }
 
+double spinFrictionArm(const Shape& s, const Mat3& R, const Vec3& n) {
+  switch (s.type) {
+    case ShapeType::Sphere:
+      return 0.0;
+    case ShapeType::Box: {
+      int down = 0;  // the body axis along the normal: the face it rests on is across it
+      for (int k = 1; k < 3; ++k)
+        if (std::abs(R.col(k).dot(n)) > std::abs(R.col(down).dot(n))) down = k;
+      const double p = 0.5 * s.size[(down + 1) % 3], q = 0.5 * s.size[(down + 2) % 3];
+      const double d = std::hypot(p, q);
+      return (2.0 * p * q * d + p * p * p * std::log((q + d) / p) + q * q * q * std::log((p + d) / q)) / (6.0 * p * q);
+    }
+    case ShapeType::Cylinder:
+    case ShapeType::Capsule: {
+      const bool standing = std::abs(R.col(2).dot(n)) > std::sqrt(0.5);
+      if (standing) return s.type == ShapeType::Cylinder ? 2.0 * s.radius / 3.0 : 0.0;
+      return 0.25 * s.length;
+    }
+  }
+  return 0.0;
+}
+
 Vec3 frictionArm(const Shape& s, const Mat3& R, const Vec3& n) {
   switch (s.type) {
     case ShapeType::Sphere:
@@ -141,6 +164,17 @@ void addSurfaceForces(const std::vector<Surface>& surfaces, const BodyConstants&
     }
     aux.F += f;
     aux.T += r.cross(f);
+    // Friction against spin about the normal, over the patch the body rests on:
+    // kinetic mu_k N rho against the spin; when not spinning, static friction cancels
+    // the applied torque about n up to mu_s N rho.
+    const double rho = spinFrictionArm(body.shape, aux.R, c.n);
+    if (rho > 0.0) {
+      const double spin = aux.omega.dot(c.n);
+      const double torque = std::abs(spin) * rho > kRestSpeed
+                                ? -std::copysign(c.muk * N * rho, spin)
+                                : -std::clamp(aux.T.dot(c.n), -c.mus * N * rho, c.mus * N * rho);
+      aux.T += torque * c.n;
+    }
   }
 }
 
@@ -195,6 +229,18 @@ int respondToSurfaces(const std::vector<Surface>& surfaces, const BodyConstants&
     if (reversed || (holds && stoppable)) {
       after.P += stop;
       after.L += r.cross(stop);
+    }
+    // Stick against spin about the normal likewise: the angular impulse about n that
+    // stops it, when the spin reversed in the step or kinetic friction can stop it
+    // within one while static friction holds the applied torque.
+    const double rho = spinFrictionArm(body.shape, applied.R, c.n);
+    if (rho > 0.0) {
+      const double spin = (applied.Iinv * after.L).dot(c.n);
+      const double stopSpin = spin / c.n.dot(applied.Iinv * c.n);  // N m s about n
+      const bool spinReversed = spin * was.omega.dot(c.n) < 0.0;
+      const bool spinHolds = std::abs(applied.T.dot(c.n)) <= c.mus * N * rho;
+      const bool spinStoppable = std::abs(stopSpin) <= (c.muk * N * h + body.mass * kRestSpeed) * rho;
+      if (spinReversed || (spinHolds && spinStoppable)) after.L -= stopSpin * c.n;
     }
   }
   return touching;

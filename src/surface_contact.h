@@ -46,6 +46,14 @@ double supportDistance(const Shape& shape, const Mat3& R, const Vec3& d);
 // flat-bottomed shapes (box, cylinder), which in this version neither tip nor roll.
 Vec3 frictionArm(const Shape& shape, const Mat3& R, const Vec3& n);
 
+// How far from the contact's centre friction against spin about the normal n acts
+// (m): the mean distance from the centre of the patch a body rests on, under even
+// pressure. A box on its face of half sides p, q (d = sqrt(p^2 + q^2)):
+// (2 p q d + p^3 ln((q + d) / p) + q^3 ln((p + d) / q)) / (6 p q), 0.383 a for a square
+// of side a; a cylinder on its end 2R/3; a cylinder or capsule lying on its side, a
+// line of length L: L/4; a sphere or a standing capsule touches at a point: 0.
+double spinFrictionArm(const Shape& shape, const Mat3& R, const Vec3& n);
+
 // Force stage: support N n and friction for every surface the body rests on.
 // aux.F and aux.T must already hold every other force (gravity, inputs, media).
 void addSurfaceForces(const std::vector<Surface>& surfaces, const BodyConstants& body,

@@ -11,8 +11,10 @@ namespace rigid {
 // Boxes are sorted by their lower bound on one axis, the one along which their centres
 // spread most, and each box is compared only with the boxes that start before it ends
 // there. The order is kept between calls and sorted again by insertion: bodies move
-// little in a step, so that sort is close to linear. (FCL's broadphase managers, tried
-// on a pile of 1000 cubes, cost 3 to 20 times more: docs/performance.md.)
+// little in a step, so that sort is close to linear. (On the benchmark's pile of 1000
+// cubes, with the rest of the code as it was, FCL's dynamic AABB tree took 0.7-0.9 ms
+// a step, its SSaP and interval-tree managers 1.4 and 4.5 ms, its SaP did not finish a
+// run, and this sweep took 0.5 ms.)
 class SweepAndPrune {
  public:
   // The pairs (i, j), i < j, of boxes [lo, hi] that overlap on all three axes

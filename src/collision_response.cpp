@@ -224,7 +224,8 @@ std::vector<size_t> bottomUp(const std::vector<Contact>& contacts, const std::ve
 // beside it), so the passes are repeated, each depth updated by the moves made so far
 // (nonlinear Gauss-Seidel, as Box2D's position solver), until no overlap deeper than
 // kResidual is left. Contacts with a gap (speculative ones) take part only when the
-// moves close it. Returns a bound of how much two bodies' moves differ (m).
+// moves close it. Returns how far a pair that was not among the contacts can have
+// closed its gap (closedGap).
 constexpr double kResidual = 1e-4;  // m: a tenth of the 1 mm a pile may overlap (issue 9)
 constexpr int kMaxCorrectionPasses = 100;
 // Passes after which every pair moves by inverse mass: projections in one metric,
@@ -262,8 +263,48 @@ std::vector<Separation> separations(const WorldModel& model, const std::vector<C
   return out;
 }
 
+// Half extents (m) of a body's axis-aligned bounding box at orientation q: exact for a
+// box, the bounding sphere's for other shapes.
+Vec3 boundingHalfExtent(const Shape& shape, const Quat& q) {
+  if (shape.type != ShapeType::Box) return Vec3::Constant(boundingRadius(shape));
+  return rotationOf(q).cwiseAbs() * (0.5 * shape.size);
+}
+
+// After the moves d of the correction, from the poses Y before them: how far a pair
+// that was not among the contacts (at least `reach` apart; a body and a surface too)
+// can have closed its gap.
+// Such a pair can overlap only if its moves differ by the reach, so only bodies moved
+// by half the reach or more are looked at, each against every other body whose
+// bounding box was closer than their moves differ. Returns the largest such
+// difference (0 when none): a whole tower lifted as one closes no gap of its own, and
+// a cube lifted beside a far one closes none either.
+double closedGap(const WorldModel& model, const std::vector<BodyState>& Y, const std::vector<Vec3>& d,
+                 double reach) {
+  std::vector<int> movers;
+  for (size_t i = 0; i < Y.size(); ++i)
+    if (d[i].norm() >= 0.5 * reach) movers.push_back(static_cast<int>(i));
+  if (movers.empty()) return 0.0;
+  std::vector<Vec3> half(Y.size());
+  for (size_t i = 0; i < Y.size(); ++i) half[i] = boundingHalfExtent(model.bodies[i].shape, Y[i].q);
+  double closed = 0.0;
+  for (int a : movers) {
+    // a surface farther than the reach (not among the contacts) that the move reaches
+    const double moved = d[a].norm();
+    if (moved >= reach && !clearOfSurfaces(model.surfaces, model.bodies[a].shape, Y[a].X, moved))
+      closed = std::max(closed, moved);
+    for (size_t b = 0; b < Y.size(); ++b) {
+      if (static_cast<int>(b) == a) continue;
+      const double differ = (d[a] - d[b]).norm();
+      if (differ < reach || differ <= closed) continue;
+      const double gap = ((Y[a].X - Y[b].X).cwiseAbs() - half[a] - half[b]).maxCoeff();
+      if (gap < differ) closed = differ;
+    }
+  }
+  return closed;
+}
+
 double correctPositions(const WorldModel& model, const std::vector<Contact>& contacts,
-                        const std::vector<int>& level, const std::vector<size_t>& order,
+                        const std::vector<int>& level, const std::vector<size_t>& order, double reach,
                         std::vector<BodyState>& Y) {
   const std::vector<Separation> pairs = separations(model, contacts, level, order);
   std::vector<Vec3> moved(Y.size(), Vec3::Zero());
@@ -280,17 +321,9 @@ double correctPositions(const WorldModel& model, const std::vector<Contact>& con
     }
     if (deepest <= kResidual) break;
   }
-  // Two bodies that were not among the contacts (apart by the reach or more) can
-  // overlap now only if their moves differ by the reach: the box around all moves
-  // bounds that difference by its diagonal. (A tower lifted as one moves its bodies
-  // alike, and no pair of it can have closed a gap.)
-  Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
-  for (size_t i = 0; i < Y.size(); ++i) {
-    Y[i].X += moved[i];
-    lo = lo.cwiseMin(moved[i]);
-    hi = hi.cwiseMax(moved[i]);
-  }
-  return (hi - lo).norm();
+  const double closed = closedGap(model, Y, moved, reach);
+  for (size_t i = 0; i < Y.size(); ++i) Y[i].X += moved[i];
+  return closed;
 }
 
 }  // namespace
@@ -437,7 +470,7 @@ double resolveContacts(const WorldModel& model, const std::vector<Contact>& foun
     if (a.invMass > 0.0) applyImpulse(Y, c.a, a, -j * c.normal);
     if (b.invMass > 0.0) applyImpulse(Y, c.b, b, j * c.normal);
   }
-  return correctPositions(model, contacts, level, order, Y);
+  return correctPositions(model, contacts, level, order, reach, Y);
 }
 
 double separateOverlaps(const WorldModel& model, const std::vector<Contact>& found, double reach,
@@ -447,7 +480,7 @@ double separateOverlaps(const WorldModel& model, const std::vector<Contact>& fou
   appendSurfaceContacts(model, Y, reach, contacts);
   if (contacts.empty()) return 0.0;
   const std::vector<int> level = stackLevels(Y.size(), contacts);
-  return correctPositions(model, contacts, level, bottomUp(contacts, level), Y);
+  return correctPositions(model, contacts, level, bottomUp(contacts, level), reach, Y);
 }
 
 }  // namespace rigid

@@ -32,9 +32,9 @@ bool anyContactImpact(const WorldModel& model, const std::vector<Contact>& conta
 // them takes the impulse that keeps it from closing more than its gap in the next
 // step; no move of the correction pushes them into each other, and bodies within
 // reach of a surface's top face are not pushed into it. Adds each body's body-body
-// contact points to count. Returns a bound of how much two bodies' moves by the
-// correction differ (m): from the reach on, pairs that were not among the contacts may
-// have been pushed into each other.
+// contact points to count. Returns how far the correction can have closed the gap of
+// a pair that was not among the contacts (m): from the reach on, such a pair may have
+// been pushed into overlap, and the caller detects again.
 double resolveContacts(const WorldModel& model, const std::vector<Contact>& contacts, double h, double reach,
                        std::vector<BodyState>& Y, std::vector<int>& count);
 

@@ -129,9 +129,9 @@ constexpr double kContactMargin = 1e-6;
 // neighbours it could push it into. (4 mm: a cube falling at 2 m/s closes 4 mm in a
 // 2 ms step; 2 mm and 6 mm both cost more on the pile of 1000, docs/performance.md.)
 constexpr double kSpeculativeMargin = 4e-3;
-// Rounds of detection and position correction after the response: when two bodies'
-// moves by the correction may differ by the speculative margin, pairs that were not
-// detected may overlap.
+// Rounds of detection and position correction after the response: when the
+// correction may have closed the gap of a pair that was not detected (at least the
+// speculative margin), that pair may overlap.
 constexpr int kMaxSeparationRounds = 4;
 
 // Contact response: what happens at an instant rather than over the step. The

@@ -132,3 +132,23 @@ TEST(CollisionResponse, SpeculativeContactStopsAnInelasticApproachAtTheGap) {
     EXPECT_EQ(count, std::vector<int>({0, 0}));  // apart: no contact points
   }
 }
+
+// A correction that moves a body farther than the speculative reach can push it into
+// a neighbour that was not detected: the middle cube of a column starts 6 mm deep in
+// the bottom one, and the top cube 5 mm above it (beyond the 4 mm reach). Lifting the
+// middle cube closes that gap, so the step detects again and the top cube is moved
+// too: no overlap deeper than the correction's residual is left after one step.
+TEST(CollisionResponse, ACorrectionBeyondTheReachDetectsAgain) {
+  rigid::WorldModel m;
+  m.gravity = Vec3::Zero();
+  m.surfaces = {floorSurface()};
+  const double sunk = 0.006, gap = 0.005;
+  const double z1 = 1.5 * kEdge - sunk;
+  for (double z : {0.5 * kEdge, z1, z1 + kEdge + gap}) m.bodies.push_back(cube(Vec3(0, 0, z)));
+  rigid::WorldData data = rigid::initialData(m);
+  ASSERT_GT(deepestOverlap(m, data.Y), 0.9 * sunk);
+  ASSERT_TRUE(rigid::step(m, data, 1e-3).ok);
+  // to the correction's residual (0.1 mm); without detecting again, 1 mm
+  EXPECT_LT(deepestOverlap(m, data.Y), 1e-4);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(data.Y[i].X.z(), (i + 0.5) * kEdge, 1e-4) << "cube " << i;
+}

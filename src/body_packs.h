@@ -50,12 +50,15 @@ EIGEN_STRONG_INLINE void multiplyTransposed(const Pack (&M)[9], const Pack (&v)[
   for (int i = 0; i < 3; ++i) out[i] = M[i] * v[0] + M[3 + i] * v[1] + M[6 + i] * v[2];
 }
 
-// Ibody^-1 of each lane's body, row by row.
-inline void loadInverseInertia(const std::vector<BodyConstants>& bodies, size_t first, size_t n, Pack (&Iinv)[9]) {
-  for (int lane = 0; lane < kLanes; ++lane) {
-    const Mat3& I = bodies[laneBody(first, lane, n)].IbodyInv;
-    for (int e = 0; e < 9; ++e) Iinv[e][lane] = I(e / 3, e % 3);
-  }
+// One lane of a pack: a 3x3 matrix (row by row), a quaternion, a vector.
+inline void setLane(Pack (&M)[9], int lane, const Mat3& m) {
+  for (int e = 0; e < 9; ++e) M[e][lane] = m(e / 3, e % 3);
+}
+inline void setLane(QuatPack& q, int lane, const Quat& v) {
+  q.w[lane] = v.w(), q.x[lane] = v.x(), q.y[lane] = v.y(), q.z[lane] = v.z();
+}
+inline void setLane(Pack (&p)[3], int lane, const Vec3& v) {
+  for (int c = 0; c < 3; ++c) p[c][lane] = v[c];
 }
 
 }  // namespace rigid

@@ -122,9 +122,9 @@ namespace {
 
 // One contact per pair: the centroid of its points, their mean normal and the deepest
 // depth (or the pair's overlap along the normal, when it is larger). A face contact (a
-// box resting on a box) then takes one impulse through its
-// patch's centre instead of corner impulses whose sequential order would leave a
-// spurious spin and make stacks rock. A touching pair merges its touching points; a
+// box resting on a box) then takes one impulse through its patch's centre instead of
+// corner impulses whose sequential order would leave a spurious spin and make stacks
+// rock. A touching pair merges its touching points; a
 // pair apart (a speculative contact) merges all of its points, so that the impulse
 // that stops its approach acts through its patch's centre too.
 void mergePairs(const WorldModel& model, const std::vector<BodyState>& Y,

@@ -3,7 +3,6 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <utility>
 
 #include "body_packs.h"
@@ -63,16 +62,14 @@ void rk4HeldForcesStep(const WorldModel& m, WorldData& d, double h, const std::v
     Pack L[3], Lhalf[3], Lend[3], Iinv[9];
     for (int lane = 0; lane < kLanes; ++lane) {
       const int i = bodies[laneBody(first, lane, n)];
-      for (int e = 0; e < 9; ++e) Iinv[e][lane] = m.bodies[i].IbodyInv(e / 3, e % 3);
       const BodyState& y = d.Y[i];
       BodyAux& aux = d.aux[i];
       accumulateAppliedForces(m, m.bodies[i], d.input[i], y, aux);
-      q.w[lane] = y.q.w(), q.x[lane] = y.q.x(), q.y[lane] = y.q.y(), q.z[lane] = y.q.z();
-      for (int c = 0; c < 3; ++c) {
-        L[c][lane] = y.L[c];
-        Lhalf[c][lane] = y.L[c] + 0.5 * h * aux.T[c];
-        Lend[c][lane] = y.L[c] + h * aux.T[c];
-      }
+      setLane(Iinv, lane, m.bodies[i].IbodyInv);
+      setLane(q, lane, y.q);
+      setLane(L, lane, y.L);
+      setLane(Lhalf, lane, y.L + 0.5 * h * aux.T);
+      setLane(Lend, lane, y.L + h * aux.T);
     }
     const QuatPack k1 = orientationRate(q, L, Iinv);
     const QuatPack k2 = orientationRate(plus(q, 0.5 * h, k1), Lhalf, Iinv);
@@ -142,14 +139,6 @@ void rk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>
   std::vector<int>& held = d.scratch.held;
   std::vector<int>& felt = d.scratch.felt;
   const int n = static_cast<int>(d.Y.size());
-  if (m.media.empty() && m.surfaces.empty()) {  // every body in free flight
-    if (static_cast<int>(held.size()) != n || (n > 0 && held.back() != n - 1)) {
-      held.resize(n);
-      std::iota(held.begin(), held.end(), 0);
-    }
-    rk4HeldForcesStep(m, d, h, held, next);
-    return;
-  }
   held.clear();
   felt.clear();
   for (int i = 0; i < n; ++i)

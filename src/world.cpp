@@ -71,11 +71,11 @@ void refreshAuxiliaries(const WorldModel& model, WorldData& data) {
   for (size_t first = 0; first < n; first += kLanes) {
     QuatPack q;
     Pack L[3], Iinv[9];
-    loadInverseInertia(model.bodies, first, n, Iinv);
     for (int lane = 0; lane < kLanes; ++lane) {
-      const BodyState& y = data.Y[laneBody(first, lane, n)];
-      q.w[lane] = y.q.w(), q.x[lane] = y.q.x(), q.y[lane] = y.q.y(), q.z[lane] = y.q.z();
-      for (int c = 0; c < 3; ++c) L[c][lane] = y.L[c];
+      const size_t i = laneBody(first, lane, n);
+      setLane(Iinv, lane, model.bodies[i].IbodyInv);
+      setLane(q, lane, data.Y[i].q);
+      setLane(L, lane, data.Y[i].L);
     }
     const RotationPack R = rotationOf(q);
     Pack Lbody[3], omegaBody[3], omega[3];

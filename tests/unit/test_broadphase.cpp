@@ -1,10 +1,13 @@
-// The sweep-and-prune broadphase against the brute-force test of every pair of boxes,
-// over calls in which the boxes move (the kept order is sorted again) and in which
-// the axis of largest spread changes, with a few large boxes (a floor, two slabs)
-// among them and boxes on both sides of the origin.
+// The broadphase (sort and sweep in the rows of a grid) against the brute-force test of
+// every pair of boxes, over calls in which the boxes move (the kept order is sorted
+// again), the axis of largest spread changes and the boxes grow (the cells change),
+// with large boxes (a floor, slabs) kept out of the grid, boxes touching exactly across
+// cell boundaries, and boxes so far away that their cell indices are clamped.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <tuple>
 #include <random>
 #include <utility>
 #include <vector>
@@ -60,6 +63,58 @@ TEST(Broadphase, SweepAndPruneFindsExactlyTheOverlappingPairs) {
     total += expected.size();
   }
   EXPECT_GT(total, 30u * 20u);  // the check saw many pairs, not an empty world
+}
+
+TEST(Broadphase, LatticeTouchingAcrossCellsAndFarBoxes) {
+  // a lattice of cubes touching face to face, edge to edge and corner to corner, as a
+  // settled pile: every neighbour pair lies across a row boundary somewhere
+  const double pitch = 0.125;  // binary: the touching faces meet exactly
+  std::vector<Vec3> lo, hi;
+  for (int i = 0; i < 7; ++i)
+    for (int j = 0; j < 6; ++j)
+      for (int k = 0; k < 5; ++k) {
+        const Vec3 c(i * pitch - 0.375, j * pitch + 0.0625, k * pitch);
+        lo.push_back(c - Vec3::Constant(pitch / 2));
+        hi.push_back(c + Vec3::Constant(pitch / 2));
+      }
+  const int lattice = static_cast<int>(lo.size());
+  // far away: beyond the clamped cell indices (1e9 cells of about 0.125 m) and beyond
+  // what a 64-bit cell index holds, on both sides; the first two overlap each other
+  for (const double x : {1e20, 1e20 + 0.05, -3e19, 5e8}) {
+    lo.push_back(Vec3(x, x, 1.0));
+    hi.push_back(Vec3(x + 0.1, x + 0.1, 1.1));
+  }
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  rigid::SweepAndPrune sap;
+  std::vector<std::pair<int, int>> found;
+  for (int call = 0; call < 40; ++call) {
+    // from call 10 on the lattice jitters and its boxes grow (the cell widens in steps),
+    // from call 25 a third of it drifts across rows each call
+    for (int b = 0; call >= 10 && b < lattice; ++b) {
+      const Vec3 move = 0.002 * Vec3(unit(rng), unit(rng), unit(rng)) +
+                        (call >= 25 && b % 3 == 0 ? Vec3(0.03, 0.0, -0.04) : Vec3::Zero());
+      lo[b] += move - Vec3::Constant(0.001 * (call - 9));
+      hi[b] += move + Vec3::Constant(0.001 * (call - 9));
+    }
+    sap.overlaps(lo, hi, found);
+    std::sort(found.begin(), found.end());
+    ASSERT_EQ(found, bruteForce(lo, hi)) << "call " << call;
+    if (call == 0) {
+      // the settled lattice: every pair of cubes whose lattice indices differ by at most
+      // one on each axis touches, Σ over the 13 directions d of Π (size - |d|) pairs;
+      // and the one far pair
+      const int size[3] = {7, 6, 5};
+      int touching = 0;
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dz = -1; dz <= 1; ++dz)
+            if (std::make_tuple(dx, dy, dz) > std::make_tuple(0, 0, 0))
+              touching += (size[0] - std::abs(dx)) * (size[1] - std::abs(dy)) * (size[2] - std::abs(dz));
+      EXPECT_EQ(static_cast<int>(found.size()), touching + 1);
+      EXPECT_TRUE(std::binary_search(found.begin(), found.end(), std::make_pair(lattice, lattice + 1)));
+    }
+  }
 }
 
 TEST(Broadphase, FewerThanTwoBoxesHaveNoPairs) {

@@ -184,16 +184,19 @@ void appendSurfaceContacts(const WorldModel& model, const std::vector<BodyState>
 }
 
 // Level of each body in the stacks: 0 on a surface, k + 1 on a level-k body; bodies
-// that rest on nothing static share the largest level.
-std::vector<int> stackLevels(size_t bodies, const std::vector<Contact>& contacts) {
+// that rest on nothing static share the largest level. A pair supports when its gap
+// is below `support`: touching for the impulses' shock propagation; the speculative
+// reach for the position correction, where a base a few µm above the floor (a cube
+// rocking on it) must still hold its tower rather than be pushed down by it.
+std::vector<int> stackLevels(size_t bodies, const std::vector<Contact>& contacts, double support = kTouching) {
   constexpr int kFree = 1 << 20;
   std::vector<int> level(bodies, kFree);
   for (const Contact& c : contacts)
-    if (c.b < 0 && c.depth >= -kTouching) level[c.a] = 0;
+    if (c.b < 0 && c.depth >= -support) level[c.a] = 0;
   for (bool changed = true; changed;) {
     changed = false;
     for (const Contact& c : contacts) {
-      if (c.b < 0 || c.depth < -kTouching) continue;
+      if (c.b < 0 || c.depth < -support) continue;
       const int up = std::min(level[c.a], level[c.b]) + 1;
       for (int body : {c.a, c.b})
         if (level[body] > up && std::min(level[c.a], level[c.b]) < kFree) {
@@ -278,25 +281,38 @@ Vec3 boundingHalfExtent(const Shape& shape, const Quat& q) {
 // bounding box was closer than their moves differ. Returns the largest such
 // difference (0 when none): a whole tower lifted as one closes no gap of its own, and
 // a cube lifted beside a far one closes none either.
+// Every body is met with every mover, so that meeting is one cheap test on centres
+// (they must be within both bounding radii and both moves on every axis); only pairs
+// that pass it take the bounding boxes, which need the orientations.
 double closedGap(const WorldModel& model, const std::vector<BodyState>& Y, const std::vector<Vec3>& d,
                  double reach) {
-  std::vector<int> movers;
-  for (size_t i = 0; i < Y.size(); ++i)
-    if (d[i].norm() >= 0.5 * reach) movers.push_back(static_cast<int>(i));
-  if (movers.empty()) return 0.0;
-  std::vector<Vec3> half(Y.size());
-  for (size_t i = 0; i < Y.size(); ++i) half[i] = boundingHalfExtent(model.bodies[i].shape, Y[i].q);
+  struct Mover {
+    int body;
+    Vec3 X;
+    double radius, moved;
+  };
+  std::vector<Mover> movers;
   double closed = 0.0;
-  for (int a : movers) {
+  for (size_t i = 0; i < Y.size(); ++i) {
+    const double moved = d[i].norm();
+    if (moved < 0.5 * reach) continue;
+    const Shape& shape = model.bodies[i].shape;
+    movers.push_back({static_cast<int>(i), Y[i].X, boundingRadius(shape), moved});
     // a surface farther than the reach (not among the contacts) that the move reaches
-    const double moved = d[a].norm();
-    if (moved >= reach && !clearOfSurfaces(model.surfaces, model.bodies[a].shape, Y[a].X, moved))
-      closed = std::max(closed, moved);
-    for (size_t b = 0; b < Y.size(); ++b) {
-      if (static_cast<int>(b) == a) continue;
-      const double differ = (d[a] - d[b]).norm();
+    if (moved >= reach && !clearOfSurfaces(model.surfaces, shape, Y[i].X, moved)) closed = std::max(closed, moved);
+  }
+  if (movers.empty()) return closed;
+  for (size_t b = 0; b < Y.size(); ++b) {
+    const double radius = boundingRadius(model.bodies[b].shape);
+    const double movedB = d[b].norm();
+    for (const Mover& a : movers) {
+      if (static_cast<size_t>(a.body) == b) continue;
+      if ((a.X - Y[b].X).cwiseAbs().maxCoeff() - a.radius - radius >= a.moved + movedB) continue;
+      const double differ = (d[a.body] - d[b]).norm();
       if (differ < reach || differ <= closed) continue;
-      const double gap = ((Y[a].X - Y[b].X).cwiseAbs() - half[a] - half[b]).maxCoeff();
+      const Vec3 halfA = boundingHalfExtent(model.bodies[a.body].shape, Y[a.body].q);
+      const Vec3 halfB = boundingHalfExtent(model.bodies[b].shape, Y[b].q);
+      const double gap = ((a.X - Y[b].X).cwiseAbs() - halfA - halfB).maxCoeff();
       if (gap < differ) closed = differ;
     }
   }
@@ -470,7 +486,8 @@ double resolveContacts(const WorldModel& model, const std::vector<Contact>& foun
     if (a.invMass > 0.0) applyImpulse(Y, c.a, a, -j * c.normal);
     if (b.invMass > 0.0) applyImpulse(Y, c.b, b, j * c.normal);
   }
-  return correctPositions(model, contacts, level, order, reach, Y);
+  const std::vector<int> withinReach = stackLevels(Y.size(), contacts, reach);
+  return correctPositions(model, contacts, withinReach, bottomUp(contacts, withinReach), reach, Y);
 }
 
 double separateOverlaps(const WorldModel& model, const std::vector<Contact>& found, double reach,
@@ -479,7 +496,7 @@ double separateOverlaps(const WorldModel& model, const std::vector<Contact>& fou
   mergePairs(model, Y, found, contacts);
   appendSurfaceContacts(model, Y, reach, contacts);
   if (contacts.empty()) return 0.0;
-  const std::vector<int> level = stackLevels(Y.size(), contacts);
+  const std::vector<int> level = stackLevels(Y.size(), contacts, reach);
   return correctPositions(model, contacts, level, bottomUp(contacts, level), reach, Y);
 }
 

@@ -46,7 +46,7 @@ struct Scratch {
 // while WorldData::profiling is set, so that a normal run pays no clock reads.
 struct StepProfile {
   double integration = 0.0;  // the integrator's stages (impact location's re-integrations too)
-  double broadphase = 0.0;   // poses, bounding boxes, FCL's AABB tree and its candidate pairs
+  double broadphase = 0.0;   // poses, bounding boxes, the sweep in grid rows and its candidate pairs
   double narrowphase = 0.0;  // contact points of the candidate pairs
   double response = 0.0;     // impulses, friction, position correction, surfaces' landing
   long steps = 0;            // internal steps profiled

@@ -425,6 +425,9 @@ struct CollisionDetector::Impl {
   std::vector<Geo> geo;               // per slot
   std::vector<Vec3> surfaceHalfAabb;  // per surface: half extents of its world AABB
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;  // per slot
+  // per slot: its FCL object has this step's pose. Most pairs of a pile end in the
+  // separating-axis test, so FCL's objects are placed only when a pair reaches FCL.
+  std::vector<char> placed;
   SweepAndPrune broadphase;
   std::vector<Vec3> lo, hi;           // scratch of detect(): each slot's bounding box
   std::vector<std::pair<int, int>> overlapping;  // scratch of detect(): slots whose boxes overlap
@@ -437,6 +440,15 @@ struct CollisionDetector::Impl {
   fcl::DistanceResultd distanceResult;
 
   bool isBody(int slot) const { return slot < nBodySlots; }
+
+  // The FCL object of a slot, at this step's pose.
+  fcl::CollisionObjectd* object(int slot) {
+    if (!placed[slot]) {
+      objects[slot]->setTransform(geo[slot].R, geo[slot].p);
+      placed[slot] = true;
+    }
+    return objects[slot].get();
+  }
 
   // The candidate pair of two slots whose boxes overlap; false for two surfaces.
   bool candidate(int s1, int s2, Pair& p) const {
@@ -454,8 +466,7 @@ struct CollisionDetector::Impl {
   // `speculative` (beyond the margin) as one contact along their separating axis.
   void narrowphase(const Pair& pr, double margin, double speculative, std::vector<Contact>& out);
   // A pair that does not overlap: its contacts when closer than the margin.
-  void appendWithinMargin(const Geo& A, const Geo& B, fcl::CollisionObjectd* oA, fcl::CollisionObjectd* oB,
-                          double margin, const Contact& proto, std::vector<Contact>& out);
+  void appendWithinMargin(const Pair& pr, double margin, const Contact& proto, std::vector<Contact>& out);
 };
 
 CollisionDetector::CollisionDetector(const WorldModel& model, const std::vector<bool>& collides)
@@ -494,6 +505,7 @@ CollisionDetector::CollisionDetector(const WorldModel& model, const std::vector<
     auto obj = std::make_unique<fcl::CollisionObjectd>(makeGeometry(g), g.R, g.p);
     d.objects.push_back(std::move(obj));
   }
+  d.placed.assign(d.geo.size(), true);  // surfaces never move; bodies are placed at their first pair
   d.lo.resize(d.geo.size());
   d.hi.resize(d.geo.size());
   d.pairs.reserve(4 * d.geo.size());
@@ -530,7 +542,7 @@ void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, s
       const BodyState& y = Y[d.slotIndex[slot]];
       g.R = y.q.normalized().toRotationMatrix();
       g.p = y.X;
-      d.objects[slot]->setTransform(g.R, g.p);
+      d.placed[slot] = false;
       half = aabbHalfExtent(g);
     } else {
       half = d.surfaceHalfAabb[d.slotIndex[slot]];
@@ -565,8 +577,6 @@ void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, double 
                                           std::vector<Contact>& out) {
   const Geo& A = geo[pr.slotA];
   const Geo& B = geo[pr.slotB];
-  fcl::CollisionObjectd* oA = objects[pr.slotA].get();
-  fcl::CollisionObjectd* oB = objects[pr.slotB].get();
   Contact proto;
   proto.a = pr.a;
   proto.b = pr.b;
@@ -598,7 +608,7 @@ void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, double 
           // touching within the margin by GJK's distance; if that distance is not
           // within it after all, the pair is still a speculative one
           const size_t before = out.size();
-          appendWithinMargin(A, B, oA, oB, margin, proto, out);
+          appendWithinMargin(pr, margin, proto, out);
           if (out.size() > before) return;
         }
         // Facing faces (a cube above another): the patch, whose centre is where an
@@ -619,8 +629,8 @@ void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, double 
     boxContacts.clear();
     double depth = 0.0;
     int code = 0;
-    fcl::detail::boxBox2<double>(2.0 * A.half, oA->getTransform(), 2.0 * B.half, oB->getTransform(), n, &depth,
-                                 &code, 4, boxContacts);
+    fcl::detail::boxBox2<double>(2.0 * A.half, object(pr.slotA)->getTransform(), 2.0 * B.half,
+                                 object(pr.slotB)->getTransform(), n, &depth, &code, 4, boxContacts);
     if (code != 0) {
       if (appendFacePatch(A, B, n, margin, proto, out) > 0) return;
       for (const fcl::ContactPointd& cp : boxContacts) {  // edge-edge: one point
@@ -633,10 +643,12 @@ void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, double 
       return;
     }
     // touching to rounding (the two tests disagree at a gap of zero)
-    appendWithinMargin(A, B, oA, oB, margin, proto, out);
+    appendWithinMargin(pr, margin, proto, out);
     return;
   }
 
+  fcl::CollisionObjectd* oA = object(pr.slotA);
+  fcl::CollisionObjectd* oB = object(pr.slotB);
   result.clear();
   fcl::collide(oA, oB, request, result);
   if (result.numContacts() > 0) {
@@ -657,13 +669,16 @@ void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, double 
     }
     return;
   }
-  appendWithinMargin(A, B, oA, oB, speculative, proto, out);
+  appendWithinMargin(pr, speculative, proto, out);
 }
 
-void CollisionDetector::Impl::appendWithinMargin(const Geo& A, const Geo& B, fcl::CollisionObjectd* oA,
-                                                 fcl::CollisionObjectd* oB, double margin, const Contact& proto,
+void CollisionDetector::Impl::appendWithinMargin(const Pair& pr, double margin, const Contact& proto,
                                                  std::vector<Contact>& out) {
   if (margin <= 0.0) return;
+  const Geo& A = geo[pr.slotA];
+  const Geo& B = geo[pr.slotB];
+  fcl::CollisionObjectd* oA = object(pr.slotA);
+  fcl::CollisionObjectd* oB = object(pr.slotB);
   distanceResult.clear();
   const double dist = fcl::distance(oA, oB, distanceRequest, distanceResult);
   if (dist >= margin) return;

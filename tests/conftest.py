@@ -39,3 +39,13 @@ def build_fmu(scene: dict) -> pathlib.Path:
 @pytest.fixture(scope="session")
 def fmu_of():
     return build_fmu
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_setup(item):
+    """Every test, and every fixture it sets up, starts in the project's root. fmpy
+    changes into an FMU's binaries folder to load its library and stays there when the
+    load fails; once that folder (a temporary extraction) is removed, every later
+    os.getcwd() raises and the rest of the session fails with it (seen twice in CI
+    simulations, from test_fmu_state on)."""
+    os.chdir(ROOT)

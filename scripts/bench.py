@@ -441,7 +441,7 @@ def write_markdown(path, r):
 
     w("## Core: piles of cubes (µs per step)\n")
     w("`BM_Pile/<N>`: 1 s of simulated time from the same start; the phases are "
-      "`WorldData::profile` (broadphase: poses, bounding boxes, the sweep and prune and its candidate "
+      "`WorldData::profile` (broadphase: poses, bounding boxes, the sweep in grid rows and its candidate "
       "pairs; narrowphase: contact points; response: impulses, friction, position correction, "
       "landings; integration: the integrator's stages, the impact location's re-integrations "
       "included); *other* is the rest of the step (auxiliaries, bookkeeping, clock reads). "

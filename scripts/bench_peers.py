@@ -12,7 +12,10 @@ the peers' own venv (.venv-peers, made by scripts/peers_venv.sh) and read back a
   RK4 (and Euler) at the given steps for T seconds, its final orientation returned so
   that bench.py measures its error against the same reference as ours.
 
-usage: bench_peers.py SCENES_DIR OUT.json [--quick] [--T 10] [--dts 1e-2,1e-3]"""
+- With --pile-timing N: only the CPU time of one simulated second of pile_<N> (Euler,
+  one repeat), for bench.py's interleaved ratio (ours and MuJoCo's, round by round).
+
+usage: bench_peers.py SCENES_DIR OUT.json [--quick] [--T 10] [--dts 1e-2,1e-3] [--pile-timing N]"""
 import argparse
 import json
 import pathlib
@@ -161,9 +164,16 @@ def main():
     p.add_argument("--quick", action="store_true")
     p.add_argument("--T", type=float, default=10.0)
     p.add_argument("--dts", default="1e-2,1e-3")
+    p.add_argument("--pile-timing", type=int, help="time pile_<N> once and write only that")
     args = p.parse_args()
     d = pathlib.Path(args.scenes)
     load = lambda name: json.loads((d / name).read_text())  # noqa: E731
+    if args.pile_timing:
+        model = mujoco.MjModel.from_xml_string(pile_xml(load(f"pile_{args.pile_timing}.json"), "Euler"))
+        per_step = cpu_per_step(model, lambda: mujoco.MjData(model), round(1.0 / model.opt.timestep), 1)
+        pathlib.Path(args.out).write_text(json.dumps({"n": args.pile_timing,
+                                                      "s_per_simulated_s": per_step / model.opt.timestep}))
+        return
     repeats = 3 if args.quick else 5
     pile_counts = (10, 100) if args.quick else (10, 100, 1000)
     free_counts = (1, 10, 100) if args.quick else (1, 10, 100, 1000)

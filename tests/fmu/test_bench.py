@@ -89,6 +89,12 @@ def test_mujoco_side_by_side(quick):
             assert measured(r["piles"][str(n)]["s_per_simulated_s"] / p["s_per_simulated_s"])
     for m in r["accuracy"]["mujoco"]:
         assert math.isfinite(m["error_rad"]) and measured(m["s_per_simulated_s"])
+    # the interleaved rounds (quick: one round of the pile of 100)
+    il = r["interleaved"]
+    assert il and il["n"] == 100 and len(il["rounds"]) == 1
+    for row in il["rounds"]:
+        assert measured(row["ours"]) and measured(row["mujoco"])
+        assert math.isclose(row["ratio"], row["ours"] / row["mujoco"], rel_tol=1e-12)
     eq = r["accuracy"]["equal_accuracy"]
     assert eq and any(e["ratio"] is not None for e in eq)
     for e in eq:
@@ -108,6 +114,7 @@ def test_markdown_and_plots(quick):
     assert statuses and set(statuses) <= {"PASS", "MISS", "–"}
     if HAVE_PEERS:
         assert "ratio ours/theirs" in text
+        assert "**Interleaved, pile of 100.**" in text
     for name in ("free_bodies.png", "piles.png"):
         png = out / "performance" / name
         data = png.read_bytes()

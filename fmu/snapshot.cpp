@@ -44,6 +44,31 @@ class Reader {
   size_t n_, at_ = 0;
 };
 
+// The contact solver's points: each names bodies and a surface of this scene.
+std::string readContactMemory(Reader& r, Snapshot& out, bool& ok) {
+  uint32_t points = 0;
+  ok = ok && r.get(points);
+  if (!ok) return "";
+  const int bodies = static_cast<int>(out.model.bodies.size());
+  const int surfaces = static_cast<int>(out.model.surfaces.size());
+  if (points > 64u * static_cast<uint32_t>(bodies)) return "the serialized state is corrupt (contact points)";
+  out.data.contactMemory.assign(points, rigid::ContactMemory{});
+  for (rigid::ContactMemory& m : out.data.contactMemory) {
+    int32_t a = 0, b = 0, surface = 0;
+    uint8_t sliding = 0;
+    ok = ok && r.get(a) && r.get(b) && r.get(surface) && r.get(m.localA) && r.get(m.normalImpulse) &&
+         r.get(m.tangentImpulse) && r.get(sliding);
+    m.sliding = sliding != 0;
+    if (!ok) return "";
+    const bool pair = b >= 0 && b < bodies && surface == -1;
+    const bool onSurface = b == -1 && surface >= 0 && surface < surfaces;
+    if (a < 0 || a >= bodies || !(pair || onSurface))
+      return "the serialized state is corrupt (a contact point names no body or surface of this scene)";
+    m.a = a, m.b = b, m.surface = surface;
+  }
+  return "";
+}
+
 }  // namespace
 
 std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
@@ -76,6 +101,11 @@ std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
   w.put(static_cast<int64_t>(s.data.steps));
   w.put(s.data.errorEstimate);
   w.put(s.data.scratch.adaptiveStep);
+  w.put(static_cast<uint32_t>(s.data.contactMemory.size()));
+  for (const rigid::ContactMemory& m : s.data.contactMemory) {
+    w.put(static_cast<int32_t>(m.a)), w.put(static_cast<int32_t>(m.b)), w.put(static_cast<int32_t>(m.surface));
+    w.put(m.localA), w.put(m.normalImpulse), w.put(m.tangentImpulse), w.put(static_cast<uint8_t>(m.sliding));
+  }
   return w.bytes;
 }
 
@@ -120,6 +150,7 @@ std::string deserialize(const char* bytes, size_t size, const std::string& guid,
   }
   int64_t steps = 0;
   ok = ok && r.get(steps) && r.get(out.data.errorEstimate) && r.get(out.data.scratch.adaptiveStep);
+  if (std::string why = readContactMemory(r, out, ok); !why.empty()) return why;
   if (!ok || !r.done())
     return "the serialized state has " + std::to_string(size) + " bytes, not the size of a state of this scene";
   const auto m = rigid::methodFromValue(method);

@@ -17,7 +17,7 @@ void accumulateForces(const WorldModel& model, const BodyConstants& body, const 
                       const BodyState& y, BodyAux& aux) {
   accumulateAppliedForces(model, body, in, y, aux);
 #if RIGID_WITH_SURFACES
-  if (!model.surfaces.empty()) addSurfaceForces(model.surfaces, body, y, aux);
+  if (surfacesAsForces(model)) addSurfaceForces(model.surfaces, body, y, aux);
 #endif
 }
 
@@ -26,7 +26,7 @@ void accumulateForces(const WorldModel& model, const BodyConstants& body, const 
 bool forcesHeldOverStep(const WorldModel& model, const BodyConstants& body, const BodyInput& input,
                         const BodyState& y, double h) {
   if (!model.media.empty()) return false;
-  if (model.surfaces.empty()) return true;
+  if (!surfacesAsForces(model)) return true;
 #if RIGID_WITH_SURFACES
   // A stage's position is within h times its velocity of X, and the stages' velocities
   // are within h times the applied acceleration of V.
@@ -55,7 +55,7 @@ void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body,
                             BodyDerivative& dy, bool withSurfaces) {
   // Surfaces' support and friction need I(t)^-1 (the contact point's effective mass);
   // the other forces need only the velocities.
-  if (withSurfaces && !model.surfaces.empty()) {
+  if (withSurfaces && surfacesAsForces(model)) {
     computeAuxiliaries(body, y, aux);
     accumulateForces(model, body, input, y, aux);
   } else {

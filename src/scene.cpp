@@ -330,7 +330,7 @@ Scene parseScene(const std::string& text) {
   m.name = identifier(o, "name", "scene");
   m.gravity = o.vec3("gravity", Vec3(0.0, 0.0, -9.81));
   if (o.has("solver")) {
-    Object s(o.at("solver"), "solver", {"method", "step", "tolerance", "energyGainLimit"});
+    Object s(o.at("solver"), "solver", {"method", "step", "tolerance", "energyGainLimit", "contacts"});
     const std::string method = s.string("method", "rk4");
     const auto chosen = methodFromName(method);
     if (!chosen) {
@@ -343,6 +343,11 @@ Scene parseScene(const std::string& text) {
     m.maxStep = positive(s, "step", &step);
     m.tolerance = s.number("tolerance", defaults::kTolerance);
     if (m.tolerance < 0.0) fail("solver.tolerance", "must be >= 0, got " + num(m.tolerance));
+    const std::string contacts = s.string("contacts", "centroid");
+    if (contacts == "manifold")
+      m.contactSolver = ContactSolver::Manifold;
+    else if (contacts != "centroid")
+      fail("solver.contacts", "must be one of centroid, manifold, got \"" + contacts + "\"");
     m.energyGainLimit = s.number("energyGainLimit", defaults::kEnergyGainLimit);
     if (m.energyGainLimit < 0.0)
       fail("solver.energyGainLimit", "must be >= 0 (0: unchecked), got " + num(m.energyGainLimit));

@@ -16,6 +16,7 @@
 #endif
 #if RIGID_WITH_COLLISIONS
 #include "collision_response.h"
+#include "contact_solver.h"
 #endif
 
 namespace rigid {
@@ -134,6 +135,42 @@ constexpr double kSpeculativeMargin = 4e-3;
 // speculative margin), that pair may overlap.
 constexpr int kMaxSeparationRounds = 4;
 
+bool manifold(const WorldModel& model) { return model.contactSolver == ContactSolver::Manifold; }
+
+// The contacts of Y for the response, into the collision cache. The manifold solver
+// wants every point of a patch within the speculative margin (a box falling flat
+// meets the floor with its far corners too); the first model wants touching points
+// and speculative pairs apart.
+[[maybe_unused]] void detectForResponse(const WorldModel& model, WorldData& data, const std::vector<BodyState>& Y) {
+#if RIGID_WITH_COLLISIONS
+  CollisionCache* c = data.collision.get();
+  c->detector.detect(Y, manifold(model) ? kSpeculativeMargin : kContactMargin, c->contacts, profileOf(data),
+                     kSpeculativeMargin);
+#else
+  (void)model, (void)data, (void)Y;
+#endif
+}
+
+// The manifold solver's response: every contact of `after`, body-body and
+// body-surface, in one solve (contact_solver.h).
+[[maybe_unused]] void respondByManifolds(const WorldModel& model, WorldData& data, double h,
+                                         std::vector<BodyState>& after, bool detected) {
+#if RIGID_WITH_COLLISIONS
+  CollisionCache* c = data.collision.get();
+  if (!c) return;
+  if (!detected) detectForResponse(model, data, after);
+  Stopwatch response(slotOf(data, &StepProfile::response));
+  const ContactStep step{h, restingNormalSpeed(model.gravity, h)};
+  const ContactSolveReport report = solveContacts(model, c->contacts, step, data.contactMemory, after, data.contacts);
+  if (data.profiling) {
+    ++data.profile.solves;
+    data.profile.iterations += report.iterations;
+  }
+#else
+  (void)model, (void)data, (void)h, (void)after, (void)detected;
+#endif
+}
+
 // Contact response: what happens at an instant rather than over the step. The
 // surfaces need the applied force at the new state to tell whether static friction
 // holds a body that has come to rest. `detected`: the collision cache already holds
@@ -142,6 +179,7 @@ constexpr int kMaxSeparationRounds = 4;
                        std::vector<BodyState>& after, bool detected) {
   std::fill(data.contacts.begin(), data.contacts.end(), 0);
   (void)model, (void)h, (void)after, (void)detected;
+  if (manifold(model)) return respondByManifolds(model, data, h, after, detected);
 #if RIGID_WITH_SURFACES
   if (!model.surfaces.empty()) {
     Stopwatch response(slotOf(data, &StepProfile::response));
@@ -157,7 +195,7 @@ constexpr int kMaxSeparationRounds = 4;
 #endif
 #if RIGID_WITH_COLLISIONS
   if (CollisionCache* c = data.collision.get()) {
-    if (!detected) c->detector.detect(after, kContactMargin, c->contacts, profileOf(data), kSpeculativeMargin);
+    if (!detected) detectForResponse(model, data, after);
     double moved = 0.0;
     {
       Stopwatch response(slotOf(data, &StepProfile::response));
@@ -210,7 +248,7 @@ int advance(const WorldModel& model, WorldData& data, double tau, std::vector<Bo
 [[maybe_unused]] bool anyImpact(const WorldModel& model, WorldData& data, double h, const std::vector<BodyState>& Y,
                                 bool forResponse = false) {
 #if RIGID_WITH_SURFACES
-  for (size_t i = 0; i < Y.size() && !model.surfaces.empty(); ++i)
+  for (size_t i = 0; i < Y.size() && surfacesAsForces(model); ++i)
     if (struckSurface(model.surfaces, model.bodies[i], model.gravity, h, Y[i])) return true;
 #endif
 #if RIGID_WITH_COLLISIONS
@@ -220,9 +258,13 @@ int advance(const WorldModel& model, WorldData& data, double tau, std::vector<Bo
   const bool bouncy = std::any_of(model.bodies.begin(), model.bodies.end(),
                                   [](const BodyConstants& b) { return b.collides && b.restitution > 0.0; });
   if (CollisionCache* c = data.collision.get(); c && (bouncy || forResponse)) {
-    c->detector.detect(Y, forResponse ? kContactMargin : 0.0, c->contacts, profileOf(data),
-                       forResponse ? kSpeculativeMargin : 0.0);
-    return bouncy && anyContactImpact(model, c->contacts, Y, restingNormalSpeed(model.gravity, h));
+    if (forResponse)
+      detectForResponse(model, data, Y);
+    else
+      c->detector.detect(Y, 0.0, c->contacts, profileOf(data), 0.0);
+    const double resting = restingNormalSpeed(model.gravity, h);
+    if (manifold(model)) return bouncy && anyBouncingImpact(model, c->contacts, Y, resting);
+    return bouncy && anyContactImpact(model, c->contacts, Y, resting);
   }
 #endif
   (void)model, (void)data, (void)h, (void)Y, (void)forResponse;
@@ -366,7 +408,7 @@ StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
     // Without surfaces, the end state's contacts are detected once, for the impact
     // check and (when no impact splits the step) for the response. Surfaces answer
     // first and move bodies out of their faces, so body contacts are detected after.
-    const bool reuse = model.surfaces.empty();
+    const bool reuse = !surfacesAsForces(model);
     bool detected = false;
     if (impacts < kMaxImpactsPerStep) {
       if (anyImpact(model, data, h, next, reuse)) {

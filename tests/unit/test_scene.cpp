@@ -131,7 +131,18 @@ TEST(Scene, UnknownBodyField) {
 
 TEST(Scene, UnknownSolverField) {
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"method": "rk4", "dt": 0.1}, )"),
-                     "solver.dt: unknown field (known: method, step, tolerance, energyGainLimit)");
+                     "solver.dt: unknown field (known: method, step, tolerance, energyGainLimit, contacts)");
+}
+
+TEST(Scene, UnknownContactSolver) {
+  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "penalty"}, )"),
+                     "solver.contacts: must be one of centroid, manifold, got \"penalty\"");
+}
+
+TEST(Scene, ContactSolverChosen) {
+  EXPECT_EQ(rigid::parseScene(sceneWith()).model.contactSolver, rigid::ContactSolver::Centroid);
+  EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "manifold"}, )")).model.contactSolver,
+            rigid::ContactSolver::Manifold);
 }
 
 TEST(Scene, NameNotIdentifier) {

@@ -1,0 +1,440 @@
+#include "contact_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+#include "surface_contact.h"  // combineCoefficients
+
+namespace rigid {
+
+using namespace contact_solver;
+
+namespace {
+
+// Points closer than this count as touching (a located impact leaves a gap of about
+// 1e-15 of the step's travel); farther ones are speculative.
+constexpr double kTouching = 1e-6;  // m
+constexpr int kMaxImpactPasses = 500;
+
+// A body as the solver sees it; the last slot of the solver's bodies stands for every
+// surface: no inverse mass, no inverse inertia, never moves.
+struct SolverBody {
+  double invMass = 0.0;
+  Mat3 Iinv = Mat3::Zero();                  // 1/(kg m^2), world frame, at the end-of-step pose
+  Vec3 v = Vec3::Zero(), w = Vec3::Zero();   // velocity and angular velocity
+  Vec3 vp = Vec3::Zero(), wp = Vec3::Zero(); // pseudo-velocities of the position correction
+  Vec3 v0 = Vec3::Zero(), w0 = Vec3::Zero(); // velocities before the solve's impulses (after impacts)
+};
+
+// One direction d of a contact point: an impulse lambda acts +lambda d on b and
+// -lambda d on a.
+struct Axis {
+  Vec3 d = Vec3::Zero();
+  Vec3 raXd = Vec3::Zero(), rbXd = Vec3::Zero();    // r x d of each side
+  Vec3 spinA = Vec3::Zero(), spinB = Vec3::Zero();  // I^-1 (r x d): spin per unit impulse
+  double mass = 0.0;  // 1 / (1/Ma + 1/Mb + (r_a x d).Ia^-1 (r_a x d) + (r_b x d).Ib^-1 (r_b x d))
+};
+
+struct Coefficients {
+  double xi = 0.0, mus = 0.0, muk = 0.0;
+};
+
+// One contact point: its normal and two tangents, the impulses accumulated along them.
+struct Row {
+  int a = 0, b = 0;  // solver bodies
+  Vec3 ra = Vec3::Zero(), rb = Vec3::Zero();
+  Axis n, t1, t2;
+  Coefficients k;
+  double depth = 0.0;
+  double target = 0.0;  // m/s, the normal velocity the solve aims at (< 0: a gap may close)
+  double lambdaN = 0.0, lambdaT1 = 0.0, lambdaT2 = 0.0, lambdaP = 0.0;
+  bool sliding = false;  // friction limited by mu_k (else mu_s), for the whole solve
+  Vec3 localA = Vec3::Zero();  // m, the point in body a's frame (matches last step's points)
+  const Contact* contact = nullptr;
+};
+
+struct Solver {
+  std::vector<SolverBody> bodies;  // one per body, then the static slot
+  std::vector<bool> involved;      // bodies that some row touches
+  std::vector<Row> rows;
+  int staticSlot() const { return static_cast<int>(bodies.size()) - 1; }
+};
+
+Coefficients coefficientsOf(const WorldModel& model, const Contact& c) {
+  const BodyConstants& a = model.bodies[c.a];
+  const bool body = c.b >= 0;
+  const double xi = body ? model.bodies[c.b].restitution : model.surfaces[c.surface].restitution;
+  const double mus = body ? model.bodies[c.b].staticFriction : model.surfaces[c.surface].staticFriction;
+  const double muk = body ? model.bodies[c.b].kineticFriction : model.surfaces[c.surface].kineticFriction;
+  return {combineCoefficients(a.restitution, xi), combineCoefficients(a.staticFriction, mus),
+          combineCoefficients(a.kineticFriction, muk)};
+}
+
+Vec3 anyPerpendicular(const Vec3& u) {
+  const Vec3 other = std::abs(u.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  return u.cross(other).normalized();
+}
+
+Axis axisOf(const SolverBody& A, const SolverBody& B, const Vec3& ra, const Vec3& rb, const Vec3& d) {
+  Axis x;
+  x.d = d;
+  x.raXd = ra.cross(d);
+  x.rbXd = rb.cross(d);
+  x.spinA = A.Iinv * x.raXd;
+  x.spinB = B.Iinv * x.rbXd;
+  x.mass = 1.0 / (A.invMass + B.invMass + x.raXd.dot(x.spinA) + x.rbXd.dot(x.spinB));
+  return x;
+}
+
+// Velocity of b relative to a at the point, along the axis.
+double relativeVelocity(const Solver& s, const Row& r, const Axis& x) {
+  const SolverBody& A = s.bodies[r.a];
+  const SolverBody& B = s.bodies[r.b];
+  return x.d.dot(B.v - A.v) + x.rbXd.dot(B.w) - x.raXd.dot(A.w);
+}
+
+// The impulse lambda along the axis: velocities and the momenta of Y.
+void applyImpulse(Solver& s, const Row& r, const Axis& x, double lambda, std::vector<BodyState>& Y) {
+  if (lambda == 0.0) return;
+  SolverBody& A = s.bodies[r.a];
+  SolverBody& B = s.bodies[r.b];
+  A.v -= lambda * A.invMass * x.d;
+  A.w -= lambda * x.spinA;
+  Y[r.a].P -= lambda * x.d;
+  Y[r.a].L -= lambda * x.raXd;
+  if (r.b == s.staticSlot()) return;
+  B.v += lambda * B.invMass * x.d;
+  B.w += lambda * x.spinB;
+  Y[r.b].P += lambda * x.d;
+  Y[r.b].L += lambda * x.rbXd;
+}
+
+// ---- prepare ---------------------------------------------------------------------
+
+void prepareBody(const WorldModel& model, const std::vector<BodyState>& Y, int i, Solver& s) {
+  if (s.involved[i]) return;
+  s.involved[i] = true;
+  SolverBody& b = s.bodies[i];
+  const Mat3 R = Y[i].q.normalized().toRotationMatrix();
+  b.invMass = 1.0 / model.bodies[i].mass;
+  b.Iinv = R * model.bodies[i].IbodyInv * R.transpose();
+  b.v = Y[i].P * b.invMass;
+  b.w = b.Iinv * Y[i].L;
+}
+
+// A row per contact point. A speculative point (apart by a gap) of a bouncing pair is
+// left out: its impact is located in time, and slowing it early would take energy
+// from the bounce.
+void prepareRows(const WorldModel& model, const std::vector<Contact>& contacts, const ContactStep& step,
+                 const std::vector<BodyState>& Y, Solver& s) {
+  s.rows.clear();
+  s.rows.reserve(contacts.size());
+  for (const Contact& c : contacts) {
+    Row r;
+    r.k = coefficientsOf(model, c);
+    const bool touching = c.depth >= -kTouching;
+    if (!touching && r.k.xi > 0.0) continue;
+    r.contact = &c;
+    r.a = c.a;
+    r.b = c.b >= 0 ? c.b : s.staticSlot();
+    prepareBody(model, Y, c.a, s);
+    if (c.b >= 0) prepareBody(model, Y, c.b, s);
+    r.ra = c.point - Y[c.a].X;
+    r.localA = Y[c.a].q.normalized().conjugate() * r.ra;
+    r.rb = c.b >= 0 ? Vec3(c.point - Y[c.b].X) : Vec3::Zero();
+    const SolverBody& A = s.bodies[r.a];
+    const SolverBody& B = s.bodies[r.b];
+    r.n = axisOf(A, B, r.ra, r.rb, c.normal);
+    // First tangent along the slip, so that a sliding point's friction opposes it
+    // exactly from the first pass; any direction when it does not slip.
+    const Vec3 u = B.v + B.w.cross(r.rb) - A.v - A.w.cross(r.ra);
+    const Vec3 slip = u - u.dot(c.normal) * c.normal;
+    const Vec3 t1 = slip.norm() > 1e-9 ? Vec3(slip.normalized()) : anyPerpendicular(c.normal);
+    r.sliding = slip.norm() > step.restingSpeed;  // a new point; a kept one takes its memory's
+    r.t1 = axisOf(A, B, r.ra, r.rb, t1);
+    r.t2 = axisOf(A, B, r.ra, r.rb, c.normal.cross(t1));
+    r.depth = c.depth;
+    r.target = touching ? 0.0 : c.depth / step.h;  // apart: may close the gap in the step
+    s.rows.push_back(r);
+  }
+}
+
+// ---- impacts ---------------------------------------------------------------------
+
+// The touching points of one pair merged into one (centroid, mean normal): an impact
+// on a face then takes one impulse through the patch's centre instead of corner
+// impulses whose sequential order would leave a spurious spin.
+std::vector<Row> impactRows(const Solver& s) {
+  std::vector<Row> out;
+  for (size_t i = 0; i < s.rows.size();) {
+    size_t end = i;
+    Vec3 point = Vec3::Zero(), normal = Vec3::Zero();
+    int n = 0;
+    for (; end < s.rows.size() && s.rows[end].a == s.rows[i].a && s.rows[end].b == s.rows[i].b &&
+           s.rows[end].contact->surface == s.rows[i].contact->surface;
+         ++end) {
+      if (s.rows[end].depth < -kTouching) continue;
+      point += s.rows[end].ra;
+      normal += s.rows[end].n.d;
+      ++n;
+    }
+    if (n > 0) {
+      Row r = s.rows[i];
+      const Vec3 X = r.ra;  // a's lever arm of the first point: shift every arm by the same
+      r.ra = point / n;
+      r.rb = r.rb + (r.ra - X);
+      r.n = axisOf(s.bodies[r.a], s.bodies[r.b], r.ra, r.rb, normal.normalized());
+      out.push_back(r);
+    }
+    i = end;
+  }
+  return out;
+}
+
+// The seed's impulse at one merged point, j = -(1 + xi) vrel m_eff, then a Coulomb
+// friction impulse against the slip, |jt| <= mu j (static when it stops the slip).
+void impact(Solver& s, const Row& r, double vrel, std::vector<BodyState>& Y) {
+  const double j = -(1.0 + r.k.xi) * vrel * r.n.mass;
+  applyImpulse(s, r, r.n, j, Y);
+  const SolverBody& A = s.bodies[r.a];
+  const SolverBody& B = s.bodies[r.b];
+  const Vec3 u = B.v + B.w.cross(r.rb) - A.v - A.w.cross(r.ra);
+  const Vec3 ut = u - u.dot(r.n.d) * r.n.d;
+  if (ut.norm() < 1e-15) return;
+  const Axis t = axisOf(A, B, r.ra, r.rb, -ut.normalized());
+  const double stick = ut.norm() * t.mass;
+  applyImpulse(s, r, t, stick <= r.k.mus * j ? stick : r.k.muk * j, Y);
+}
+
+// Impacts as the seed answers them, before the solve and outside its accumulated
+// impulses (which would take a bounce back): passes over the pairs while one of them
+// approaches faster than a resting body can, so that a chain of touching bodies passes
+// an impact on (Newton's cradle). Returns the passes taken.
+int answerImpacts(Solver& s, const ContactStep& step, std::vector<BodyState>& Y) {
+  std::vector<Row> rows = impactRows(s);
+  int passes = 0;
+  for (bool struck = true; struck && passes < kMaxImpactPasses;) {
+    struck = false;
+    for (const Row& r : rows) {
+      const double vrel = relativeVelocity(s, r, r.n);
+      if (vrel >= -step.restingSpeed) continue;
+      impact(s, r, vrel, Y);
+      struck = true;
+    }
+    if (struck) ++passes;
+  }
+  return passes;
+}
+
+// ---- warm start ------------------------------------------------------------------
+
+auto pairKey(int a, int b, int surface) { return std::make_tuple(a, b < 0 ? 1 : 0, b >= 0 ? b : surface); }
+
+// The velocities that the solve's impulses start from (correctPositions moves each body
+// by what they change).
+void markVelocities(Solver& s) {
+  for (SolverBody& b : s.bodies) b.v0 = b.v, b.w0 = b.w;
+}
+
+// Each row takes the impulses of last step's nearest point of the same pair (body a's
+// frame, within kMatchDistance), each old point used once, and applies them.
+void warmStart(const std::vector<ContactMemory>& memory, Solver& s, std::vector<BodyState>& Y) {
+  std::vector<bool> used(memory.size(), false);
+  auto before = [](const ContactMemory& m, const std::tuple<int, int, int>& key) {
+    return pairKey(m.a, m.b, m.surface) < key;
+  };
+  for (Row& r : s.rows) {
+    const Contact& c = *r.contact;
+    const auto key = pairKey(c.a, c.b, c.surface);
+    size_t best = memory.size();
+    double nearest = kMatchDistance * kMatchDistance;
+    for (auto it = std::lower_bound(memory.begin(), memory.end(), key, before);
+         it != memory.end() && pairKey(it->a, it->b, it->surface) == key; ++it) {
+      const size_t m = static_cast<size_t>(it - memory.begin());
+      const double d2 = (it->localA - r.localA).squaredNorm();
+      if (!used[m] && d2 < nearest) nearest = d2, best = m;
+    }
+    if (best == memory.size()) continue;
+    used[best] = true;
+    r.sliding = memory[best].sliding;
+    r.lambdaN = memory[best].normalImpulse;
+    r.lambdaT1 = memory[best].tangentImpulse.dot(r.t1.d);
+    r.lambdaT2 = memory[best].tangentImpulse.dot(r.t2.d);
+    const double limit = (r.sliding ? r.k.muk : r.k.mus) * r.lambdaN, t = std::hypot(r.lambdaT1, r.lambdaT2);
+    if (t > limit) r.lambdaT1 *= limit / t, r.lambdaT2 *= limit / t;
+    applyImpulse(s, r, r.n, r.lambdaN, Y);
+    applyImpulse(s, r, r.t1, r.lambdaT1, Y);
+    applyImpulse(s, r, r.t2, r.lambdaT2, Y);
+  }
+}
+
+// ---- velocities ------------------------------------------------------------------
+
+// Normal: lambda_n += -m_n (v_n - target), clamped at 0 accumulated. Returns the
+// velocity change it made at the point (m/s).
+double solveNormal(Solver& s, Row& r, std::vector<BodyState>& Y) {
+  const double vn = relativeVelocity(s, r, r.n);
+  const double total = std::max(r.lambdaN - r.n.mass * (vn - r.target), 0.0);
+  const double delta = total - r.lambdaN;
+  r.lambdaN = total;
+  applyImpulse(s, r, r.n, delta, Y);
+  return std::abs(delta) / r.n.mass;
+}
+
+// Friction: the impulse that stops the slip, projected onto the disc |lambda_t| <=
+// mu lambda_n, mu = mu_s for a sticking point and mu_k for a sliding one. (Switching
+// between the two within the passes would make the projection jump and never settle:
+// a point's state changes between steps, in store().) Returns the velocity change it
+// made at the point (m/s).
+double frictionLimit(const Row& r) { return (r.sliding ? r.k.muk : r.k.mus) * r.lambdaN; }
+
+double solveFriction(Solver& s, Row& r, std::vector<BodyState>& Y) {
+  const double v1 = relativeVelocity(s, r, r.t1), v2 = relativeVelocity(s, r, r.t2);
+  double l1 = r.lambdaT1 - r.t1.mass * v1, l2 = r.lambdaT2 - r.t2.mass * v2;
+  const double magnitude = std::hypot(l1, l2), limit = frictionLimit(r);
+  if (magnitude > limit) {
+    const double scale = magnitude > 0.0 ? limit / magnitude : 0.0;
+    l1 *= scale, l2 *= scale;
+  }
+  const double d1 = l1 - r.lambdaT1, d2 = l2 - r.lambdaT2;
+  r.lambdaT1 = l1, r.lambdaT2 = l2;
+  applyImpulse(s, r, r.t1, d1, Y);
+  applyImpulse(s, r, r.t2, d2, Y);
+  return std::max(std::abs(d1) / r.t1.mass, std::abs(d2) / r.t2.mass);
+}
+
+// Gauss-Seidel passes over the rows until no impulse changes a velocity by more than
+// the tolerance, or the cap.
+void solveVelocities(Solver& s, std::vector<BodyState>& Y, ContactSolveReport& report) {
+  for (report.iterations = 0; report.iterations < kMaxVelocityIterations;) {
+    double change = 0.0;
+    for (Row& r : s.rows) {
+      change = std::max(change, solveNormal(s, r, Y));
+      change = std::max(change, solveFriction(s, r, Y));
+    }
+    ++report.iterations;
+    report.residual = change;
+    if (change <= kVelocityTolerance) break;
+  }
+}
+
+// ---- positions -------------------------------------------------------------------
+
+// Split impulse: pseudo-velocities that would remove kBaumgarte of each overlap beyond
+// the slop in one step, solved like the normal impulses (accumulated, >= 0). They are
+// integrated into the positions and dropped: velocities, and so the energy, are left as
+// the solve made them.
+void solvePseudoVelocities(Solver& s, double h) {
+  for (int pass = 0; pass < kPositionIterations; ++pass) {
+    bool any = false;
+    for (Row& r : s.rows) {
+      SolverBody& A = s.bodies[r.a];
+      SolverBody& B = s.bodies[r.b];
+      // the overlap left after the solve's own move (correctPositions)
+      const double solved = r.n.d.dot(B.v - B.v0 - A.v + A.v0) + r.n.rbXd.dot(B.w - B.w0) - r.n.raXd.dot(A.w - A.w0);
+      const double depth = r.depth - 0.5 * h * solved;
+      if (depth <= kSlop) continue;
+      any = true;
+      const double vn = r.n.d.dot(B.vp - A.vp) + r.n.rbXd.dot(B.wp) - r.n.raXd.dot(A.wp);
+      const double target = std::min(kBaumgarte * (depth - kSlop) / h, kMaxPushOut);
+      const double total = std::max(r.lambdaP + r.n.mass * (target - vn), 0.0);
+      const double delta = total - r.lambdaP;
+      r.lambdaP = total;
+      A.vp -= delta * A.invMass * r.n.d;
+      A.wp -= delta * r.n.spinA;
+      if (r.b == s.staticSlot()) continue;
+      B.vp += delta * B.invMass * r.n.d;
+      B.wp += delta * r.n.spinB;
+    }
+    if (!any) return;
+  }
+}
+
+// The positions: the pseudo-velocities' move, and the move of the solve's impulses
+// taken as a constant force over the step (h/2 times the velocity change they made,
+// as the integrator moves a body under a constant force). The integrator moved every
+// body by the step's applied forces alone: a body resting on the floor sank g h^2 / 2
+// and a box held by static friction on a ramp slid g sin(theta) h^2 / 2; the solve's
+// move takes both back, so that what contact holds does not creep.
+void correctPositions(Solver& s, double h, std::vector<BodyState>& Y) {
+  solvePseudoVelocities(s, h);
+  for (size_t i = 0; i + 1 < s.bodies.size(); ++i) {
+    const SolverBody& b = s.bodies[i];
+    if (!s.involved[i]) continue;
+    const Vec3 move = h * b.vp + 0.5 * h * (b.v - b.v0);
+    const Vec3 turn = h * b.wp + 0.5 * h * (b.w - b.w0);
+    if (move.isZero(0.0) && turn.isZero(0.0)) continue;
+    Y[i].X += move;
+    const Quat& q = Y[i].q;
+    const Quat spin(0.0, 0.5 * turn.x(), 0.5 * turn.y(), 0.5 * turn.z());
+    Y[i].q = Quat(q.coeffs() + (spin * q).coeffs()).normalized();
+  }
+}
+
+// ---- store -----------------------------------------------------------------------
+
+// A point whose friction ends on the cone's edge with its slip not stopped slides in
+// the next step (kinetic limit); one whose friction ends inside it has stopped its
+// slip and sticks (static limit).
+void store(const Solver& s, std::vector<ContactMemory>& memory) {
+  memory.clear();
+  for (const Row& r : s.rows) {
+    const Contact& c = *r.contact;
+    ContactMemory m;
+    m.a = c.a, m.b = c.b, m.surface = c.surface;
+    m.localA = r.localA;
+    m.normalImpulse = r.lambdaN;
+    m.tangentImpulse = r.lambdaT1 * r.t1.d + r.lambdaT2 * r.t2.d;
+    const double slip = std::hypot(relativeVelocity(s, r, r.t1), relativeVelocity(s, r, r.t2));
+    m.sliding = r.lambdaN > 0.0 && std::hypot(r.lambdaT1, r.lambdaT2) >= (1.0 - 1e-9) * frictionLimit(r) &&
+                slip > kVelocityTolerance;
+    memory.push_back(m);
+  }
+}
+
+void countTouching(const std::vector<Contact>& contacts, std::vector<int>& count) {
+  for (const Contact& c : contacts) {
+    if (c.depth < -kTouching) continue;
+    ++count[c.a];
+    if (c.b >= 0) ++count[c.b];
+  }
+}
+
+}  // namespace
+
+ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Contact>& contacts,
+                                 const ContactStep& step, std::vector<ContactMemory>& memory,
+                                 std::vector<BodyState>& Y, std::vector<int>& count) {
+  ContactSolveReport report;
+  countTouching(contacts, count);
+  Solver s;
+  s.bodies.resize(Y.size() + 1);
+  s.involved.assign(Y.size(), false);
+  prepareRows(model, contacts, step, Y, s);
+  report.points = static_cast<int>(s.rows.size());
+  report.impactPasses = answerImpacts(s, step, Y);
+  markVelocities(s);
+  warmStart(memory, s, Y);
+  solveVelocities(s, Y, report);
+  correctPositions(s, step.h, Y);
+  store(s, memory);
+  return report;
+}
+
+bool anyBouncingImpact(const WorldModel& model, const std::vector<Contact>& contacts,
+                       const std::vector<BodyState>& Y, double restingSpeed) {
+  for (const Contact& c : contacts) {
+    if (c.depth <= 0.0 || coefficientsOf(model, c).xi <= 0.0) continue;
+    auto pointVelocity = [&](int i) -> Vec3 {
+      if (i < 0) return Vec3::Zero();
+      const Mat3 R = Y[i].q.normalized().toRotationMatrix();
+      const Vec3 w = R * (model.bodies[i].IbodyInv * (R.transpose() * Y[i].L));
+      return Y[i].P / model.bodies[i].mass + w.cross(c.point - Y[i].X);
+    };
+    if (c.normal.dot(pointVelocity(c.b) - pointVelocity(c.a)) < -restingSpeed) return true;
+  }
+  return false;
+}
+
+}  // namespace rigid

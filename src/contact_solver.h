@@ -1,0 +1,62 @@
+// The manifold contact solver (solver.contacts = "manifold"): one pipeline for every
+// touching pair, body-body and body-surface, a surface being a static box of infinite
+// mass. Each pair brings the points of its contact patch (up to 4, the detector's
+// manifold); the solver answers all of them together:
+//   impacts      the seed's impulse j with restitution xi, pass after pass while some
+//                pair approaches faster than a resting body can (Newton's cradle);
+//   warm start   last step's accumulated impulses of the points that are still there;
+//   velocities   sequential impulses (projected Gauss-Seidel): lambda_n >= 0, the
+//                friction impulse in the disc |lambda_t| <= mu lambda_n (mu_s while the
+//                point sticks, mu_k once it slides), speculative points allowed to
+//                close their gap in the step and no more;
+//   positions    split impulse: pseudo-velocities that move bodies out of overlap
+//                and are then dropped, so that no energy is added;
+//   store        the points and their impulses for the next step (ContactMemory).
+#pragma once
+
+#include <vector>
+
+#include "collision_detection.h"
+#include "contact_memory.h"
+#include "world.h"
+
+namespace rigid {
+
+// One solve's context: the step and where its figures go.
+struct ContactStep {
+  double h = 0.0;             // s, the internal step
+  double restingSpeed = 0.0;  // m/s: a slower approach does not bounce (restingNormalSpeed)
+};
+
+struct ContactSolveReport {
+  int points = 0;             // contact points answered
+  int iterations = 0;         // velocity iterations taken
+  double residual = 0.0;      // m/s, largest velocity change of the last iteration
+  int impactPasses = 0;       // passes of the impact stage (0: no impact)
+};
+
+// The solver's constants, stated once (README, "Contacts").
+namespace contact_solver {
+constexpr int kMaxVelocityIterations = 60;   // cap of the Gauss-Seidel passes
+constexpr double kVelocityTolerance = 1e-5;  // m/s: stop when no impulse changes a velocity more
+constexpr int kPositionIterations = 8;       // split-impulse passes
+constexpr double kSlop = 1e-4;               // m, overlap left alone (a resting body's seat)
+constexpr double kBaumgarte = 0.2;           // share of the overlap beyond the slop removed per step
+constexpr double kMaxPushOut = 1.0;          // m/s, cap of the position correction's speed
+constexpr double kMatchDistance = 0.01;      // m: a point within this of last step's (body a's frame) is the same
+}  // namespace contact_solver
+
+// Answers the contacts of Y (the end of the step, detected with the speculative
+// margin; `contacts` sorted by pair as the detector returns them): changes P and L by
+// the impulses and X, q by the position correction. `memory` holds last step's points
+// on entry and this step's on return. Adds each body's touching points to count.
+ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Contact>& contacts,
+                                 const ContactStep& step, std::vector<ContactMemory>& memory,
+                                 std::vector<BodyState>& Y, std::vector<int>& count);
+
+// Whether some contact of Y is a bouncing impact: overlapping, xi > 0, approaching
+// faster than restingSpeed (m/s). The step then locates the instant of impact.
+bool anyBouncingImpact(const WorldModel& model, const std::vector<Contact>& contacts,
+                       const std::vector<BodyState>& Y, double restingSpeed);
+
+}  // namespace rigid

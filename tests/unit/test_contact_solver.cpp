@@ -1,0 +1,387 @@
+// The manifold contact solver (solver.contacts = "manifold") against closed forms of
+// statics and rolling: the seed's impulse j as its one-point case, boxes that tip or
+// fall back, rolling without slipping and its incline accelerations, the tipping
+// threshold of a pushed box, torsional friction, stacks and piles that come to rest,
+// and no energy gained through contact.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "contact_solver.h"
+#include "scene.h"
+#include "world.h"
+
+namespace {
+
+using json = nlohmann::json;
+using rigid::Mat3;
+using rigid::Quat;
+using rigid::Vec3;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kG = 9.81;
+
+double radians(double degrees) { return degrees * kPi / 180.0; }
+
+json floorSurface(double mus = 0.6, double muk = 0.6, double xi = 0.0) {
+  return {{"name", "floor"}, {"min", {-20, -20, -1}}, {"max", {20, 20, 0}},
+          {"staticFriction", mus}, {"kineticFriction", muk}, {"restitution", xi}};
+}
+
+json box(const std::string& name, const Vec3& size, const Vec3& position, const Quat& q = Quat::Identity(),
+         double xi = 0.0, double mus = 0.6, double muk = 0.6) {
+  return {{"name", name},
+          {"shape", {{"type", "box"}, {"size", {size.x(), size.y(), size.z()}}}},
+          {"mass", 1.0},
+          {"position", {position.x(), position.y(), position.z()}},
+          {"orientation", {q.w(), q.x(), q.y(), q.z()}},
+          {"restitution", xi},
+          {"staticFriction", mus},
+          {"kineticFriction", muk}};
+}
+
+// (A braced single object is that object to nlohmann::json, not a list: one is wrapped.)
+json sceneOf(const json& bodies, const json& surfaces, double step = 1e-3) {
+  auto list = [](const json& j) { return j.is_array() ? j : json::array({j}); };
+  return {{"name", "T"},
+          {"solver", {{"method", "rk4"}, {"step", step}, {"contacts", "manifold"}}},
+          {"bodies", list(bodies)},
+          {"surfaces", list(surfaces)}};
+}
+
+// One world run step by step, as the FMU runs it.
+struct Sim {
+  explicit Sim(const json& scene) : model(rigid::parseScene(scene.dump()).model), data(rigid::initialData(model)) {}
+
+  // Runs `seconds`; `each` (optional) is called after every step.
+  template <class Each>
+  void run(double seconds, Each each) {
+    const long steps = std::lround(seconds / model.maxStep);
+    for (long k = 0; k < steps; ++k) {
+      const rigid::StepResult r = rigid::step(model, data, model.maxStep);
+      ASSERT_TRUE(r.ok) << "step " << k << " refused (body " << r.body << ", " << r.cause << ")";
+      each();
+    }
+  }
+  void run(double seconds) {
+    run(seconds, [] {});
+  }
+
+  double fastest() const {
+    double v = 0.0;
+    for (const rigid::BodyAux& a : data.aux) v = std::max(v, a.V.norm());
+    return v;
+  }
+  Mat3 R(int i) const { return data.Y[i].q.normalized().toRotationMatrix(); }
+
+  // Mechanical energy (J): kinetic, rotational and potential in the scene's gravity.
+  double energy() const {
+    double e = 0.0;
+    for (size_t i = 0; i < data.Y.size(); ++i) {
+      const double m = model.bodies[i].mass;
+      e += 0.5 * data.Y[i].P.squaredNorm() / m + 0.5 * data.aux[i].omega.dot(data.Y[i].L) -
+           m * model.gravity.dot(data.Y[i].X);
+    }
+    return e;
+  }
+
+  // Deepest overlap of any touching pair or body and surface (m), freshly detected.
+  double deepestOverlap() const {
+    rigid::CollisionDetector probe(model, std::vector<bool>(model.bodies.size(), true));
+    std::vector<rigid::Contact> contacts;
+    probe.detect(data.Y, 0.0, contacts);
+    double deepest = 0.0;
+    for (const rigid::Contact& c : contacts) deepest = std::max({deepest, c.depth, c.pairOverlap});
+    return deepest;
+  }
+
+  rigid::WorldModel model;
+  rigid::WorldData data;
+};
+
+// ---- the seed's impulse: the one-point, one-iteration case ----------------------------
+
+struct TwoBodies {
+  rigid::WorldModel model;
+  std::vector<rigid::BodyState> Y;
+  rigid::Contact contact;
+};
+
+// Two boxes of unequal masses and turned inertias meeting off their centres.
+TwoBodies twoBodies(double xi) {
+  TwoBodies t;
+  for (int i = 0; i < 2; ++i) {
+    rigid::BodyConstants b;
+    b.shape.type = rigid::ShapeType::Box;
+    b.shape.size = i == 0 ? Vec3(0.2, 0.4, 0.3) : Vec3(0.5, 0.1, 0.2);
+    rigid::setMass(b, i == 0 ? 2.0 : 3.5);
+    b.restitution = xi;
+    b.staticFriction = b.kineticFriction = 0.0;  // the seed's j is frictionless
+    t.model.bodies.push_back(b);
+  }
+  t.Y.resize(2);
+  t.Y[0].X = Vec3(0.0, 0.0, 0.0);
+  t.Y[0].q = Quat(Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()));
+  t.Y[0].P = 2.0 * Vec3(1.5, 0.2, -0.1);
+  t.Y[0].L = Vec3(0.02, -0.01, 0.03);
+  t.Y[1].X = Vec3(0.35, 0.1, 0.05);
+  t.Y[1].q = Quat(Eigen::AngleAxisd(-0.7, Vec3(0, 1, 1).normalized()));
+  t.Y[1].P = 3.5 * Vec3(-0.8, 0.1, 0.3);
+  t.Y[1].L = Vec3(-0.05, 0.04, 0.01);
+  t.contact.a = 0;
+  t.contact.b = 1;
+  t.contact.point = Vec3(0.15, 0.07, 0.02);
+  t.contact.normal = Vec3(1.0, 0.2, 0.1).normalized();
+  t.contact.depth = 0.0;
+  return t;
+}
+
+// j = -(1 + xi) vrel / (1/Ma + 1/Mb + n.((Ia^-1 (ra x n)) x ra + (Ib^-1 (rb x n)) x rb)),
+// written out from the seed's formula with the inverse inertias formed here.
+double seedImpulse(const TwoBodies& t, double xi) {
+  const Vec3& n = t.contact.normal;
+  Mat3 Iinv[2];
+  Vec3 r[2], v[2];
+  for (int i = 0; i < 2; ++i) {
+    const Mat3 R = t.Y[i].q.toRotationMatrix();
+    Iinv[i] = R * t.model.bodies[i].Ibody.inverse() * R.transpose();
+    r[i] = t.contact.point - t.Y[i].X;
+    v[i] = t.Y[i].P / t.model.bodies[i].mass + (Iinv[i] * t.Y[i].L).cross(r[i]);
+  }
+  const double vrel = n.dot(v[1] - v[0]);
+  const double denominator = 1.0 / t.model.bodies[0].mass + 1.0 / t.model.bodies[1].mass +
+                             n.dot((Iinv[0] * r[0].cross(n)).cross(r[0]) + (Iinv[1] * r[1].cross(n)).cross(r[1]));
+  return -(1.0 + xi) * vrel / denominator;
+}
+
+void expectImpulse(const TwoBodies& before, const std::vector<rigid::BodyState>& after, double j) {
+  const Vec3 J = j * before.contact.normal;
+  const Vec3 ra = before.contact.point - before.Y[0].X, rb = before.contact.point - before.Y[1].X;
+  const Vec3 expected[4] = {before.Y[0].P - J, before.Y[0].L - ra.cross(J), before.Y[1].P + J,
+                            before.Y[1].L + rb.cross(J)};
+  const Vec3 got[4] = {after[0].P, after[0].L, after[1].P, after[1].L};
+  for (int k = 0; k < 4; ++k) EXPECT_LT((got[k] - expected[k]).norm(), 1e-12 * std::max(1.0, expected[k].norm())) << k;
+}
+
+TEST(ContactSolver, OnePointImpactIsTheSeedsImpulse) {
+  const double xi = 0.6;
+  TwoBodies t = twoBodies(xi);
+  const double j = seedImpulse(t, xi);
+  ASSERT_GT(j, 0.0);  // approaching
+  std::vector<rigid::BodyState> Y = t.Y;
+  std::vector<rigid::ContactMemory> memory;
+  std::vector<int> count(2, 0);
+  const rigid::ContactSolveReport r =
+      rigid::solveContacts(t.model, {t.contact}, {1e-3, 0.02}, memory, Y, count);
+  EXPECT_EQ(r.impactPasses, 1);
+  expectImpulse(t, Y, j);
+  EXPECT_EQ(count, (std::vector<int>{1, 1}));
+}
+
+// An approach slower than a resting body's is no impact: the solve's first iteration
+// takes it out, which is the seed's j with xi = 0; the second finds nothing to change.
+TEST(ContactSolver, OnePointRestingApproachIsTheSeedsImpulseWithoutBounce) {
+  TwoBodies t = twoBodies(0.6);
+  const double j = seedImpulse(t, 0.0);
+  std::vector<rigid::BodyState> Y = t.Y;
+  std::vector<rigid::ContactMemory> memory;
+  std::vector<int> count(2, 0);
+  const rigid::ContactSolveReport r = rigid::solveContacts(t.model, {t.contact}, {1e-3, 100.0}, memory, Y, count);
+  EXPECT_EQ(r.impactPasses, 0);
+  EXPECT_LE(r.iterations, 2);
+  expectImpulse(t, Y, j);
+  ASSERT_EQ(memory.size(), 1u);  // stored for the next step's warm start
+  EXPECT_NEAR(memory[0].normalImpulse, j, 1e-12 * j);
+}
+
+// ---- tipping ----------------------------------------------------------------------
+
+// A unit cube set down on one bottom edge, turned by `degrees` about y: below 45 deg its
+// centre of mass is inside the edge and it falls back flat, above it tips onto the next
+// face. Either way it ends at rest face down, its centre at 0.5 m.
+void leaningCube(double degrees, double xi) {
+  const double t = radians(degrees);
+  const Quat q(Eigen::AngleAxisd(t, Vec3::UnitY()));
+  Sim sim(sceneOf({box("cube", Vec3::Ones(), Vec3(0, 0, 0.5 * (std::cos(t) + std::sin(t))), q, xi)},
+                  {floorSurface(0.6, 0.6, xi)}));
+  sim.run(3.0);
+  EXPECT_LT(sim.fastest(), 1e-3) << degrees;
+  EXPECT_NEAR(sim.data.Y[0].X.z(), 0.5, 1e-3) << degrees;
+  // the face that ends down: the body's z axis (fell back) or its x axis (tipped)
+  const Mat3 R = sim.R(0);
+  const double down = degrees < 45.0 ? std::abs(R(2, 2)) : std::abs(R(2, 0));
+  EXPECT_GT(down, std::cos(radians(1.0))) << degrees;
+}
+
+TEST(ContactSolver, CubeOnAnEdgeFallsBackOrTipsOverAndRests) {
+  for (double degrees : {20.0, 30.0, 40.0, 50.0, 60.0, 70.0}) leaningCube(degrees, 0.0);
+}
+
+TEST(ContactSolver, BouncyCubeOnAnEdgeFallsBackOrTipsOverAndRests) {
+  for (double degrees : {25.0, 65.0}) leaningCube(degrees, 0.5);
+}
+
+// A box 0.2 x 0.2 x 0.6 m pushed horizontally at its top: it tips about its far bottom
+// edge when F H > m g w / 2, F = m g w / (2 H) = 1.635 N for H = 0.6 m, w = 0.2 m
+// (static friction, 0.6 m g = 5.9 N, keeps it from sliding). The push is the force at
+// the centre of mass plus its moment (0, 0, H/2) x F, held while the box is upright.
+double pushedTallBox(double force) {
+  Sim sim(sceneOf({box("tall", Vec3(0.2, 0.2, 0.6), Vec3(0, 0, 0.3))}, {floorSurface()}));
+  double tilt = 0.0;
+  sim.run(3.0, [&] {
+    const double now = std::acos(std::min(1.0, std::abs(sim.R(0)(2, 2))));
+    tilt = std::max(tilt, now);
+    const bool pushing = now < radians(20.0);
+    sim.data.input[0].force = pushing ? Vec3(force, 0, 0) : Vec3::Zero();
+    sim.data.input[0].torque = pushing ? Vec3(0, 0.3 * force, 0) : Vec3::Zero();
+  });
+  return tilt;
+}
+
+TEST(ContactSolver, TallBoxPushedBelowTheTippingThresholdStands) {
+  const double threshold = kG * 0.2 / (2.0 * 0.6);
+  EXPECT_LT(pushedTallBox(0.9 * threshold), radians(0.5));
+}
+
+TEST(ContactSolver, TallBoxPushedAboveTheTippingThresholdFallsOnItsSide) {
+  const double threshold = kG * 0.2 / (2.0 * 0.6);
+  EXPECT_GT(pushedTallBox(1.2 * threshold), radians(80.0));
+}
+
+// A torque about the vertical on a resting cube (edge a = 1 m): its four corner points
+// each bear m g / 4 at a / sqrt(2) from the axis, so static friction holds up to
+// mu_s m g a / sqrt(2) and the cube turns above it.
+double yawAfterTorque(double torque) {
+  Sim sim(sceneOf({box("cube", Vec3::Ones(), Vec3(0, 0, 0.5), Quat::Identity(), 0.0, 0.6, 0.4)},
+                  {floorSurface(0.6, 0.4)}));
+  sim.run(0.2);  // seated
+  const Vec3 x0 = sim.R(0).col(0);
+  sim.data.input[0].torque = Vec3(0, 0, torque);
+  sim.run(1.0);
+  return std::acos(std::min(1.0, sim.R(0).col(0).dot(x0)));
+}
+
+TEST(ContactSolver, StaticFrictionHoldsATorqueBelowItsLimitAndNotAbove) {
+  const double limit = 0.6 * kG / std::sqrt(2.0);
+  EXPECT_LT(yawAfterTorque(0.9 * limit), radians(0.01));
+  EXPECT_GT(yawAfterTorque(1.1 * limit), radians(5.0));
+}
+
+// ---- rolling ----------------------------------------------------------------------
+
+json roller(const std::string& shape, const Vec3& position, const Vec3& velocity, const Vec3& omega,
+            double mus, double muk, const Quat& turn = Quat::Identity()) {
+  json s = shape == "sphere" ? json{{"type", "sphere"}, {"radius", 0.1}}
+                             : json{{"type", "cylinder"}, {"radius", 0.1}, {"length", 0.3}};
+  // a cylinder lies on its side with its axis along the turn's y
+  const Quat q = shape == "sphere" ? turn : Quat(turn * Eigen::AngleAxisd(kPi / 2, Vec3::UnitX()));
+  return {{"name", "roller"},
+          {"shape", s},
+          {"mass", 1.0},
+          {"position", {position.x(), position.y(), position.z()}},
+          {"orientation", {q.w(), q.x(), q.y(), q.z()}},
+          {"velocity", {velocity.x(), velocity.y(), velocity.z()}},
+          {"angularVelocity", {omega.x(), omega.y(), omega.z()}},
+          {"restitution", 0.0},
+          {"staticFriction", mus},
+          {"kineticFriction", muk}};
+}
+
+// Rolling without slipping on a level floor needs no friction: v stays.
+TEST(ContactSolver, SphereAndCylinderRollOnALevelFloorWithoutLosingSpeed) {
+  for (const char* shape : {"sphere", "cylinder"}) {
+    Sim sim(sceneOf({roller(shape, Vec3(0, 0, 0.1), Vec3(1, 0, 0), Vec3(0, 10, 0), 0.6, 0.4)},
+                    {floorSurface(0.6, 0.4)}));
+    double slowest = 1.0, quickest = 1.0;
+    sim.run(2.0, [&] {
+      slowest = std::min(slowest, sim.data.aux[0].V.x());
+      quickest = std::max(quickest, sim.data.aux[0].V.x());
+    });
+    EXPECT_GT(slowest, 0.99) << shape;
+    EXPECT_LT(quickest, 1.01) << shape;
+    EXPECT_NEAR(sim.data.Y[0].X.x(), 2.0, 0.02) << shape;
+  }
+}
+
+// On an incline of angle theta, from rest: rolling without slipping when
+// mu_s >= tan(theta) k / (1 + k), k = I / (m r^2) (2/5 sphere, 1/2 cylinder), with
+// a = g sin(theta) / (1 + k); else sliding with a = g (sin(theta) - mu_k cos(theta)).
+// The distance down the slope after T is a T^2 / 2.
+double distanceDownIncline(const char* shape, double theta, double mus, double muk, double T) {
+  const Quat turn(Eigen::AngleAxisd(theta, Vec3::UnitY()));
+  json ramp = {{"name", "ramp"}, {"min", {-5, -1, -1}}, {"max", {5, 1, 0}}, {"staticFriction", mus},
+               {"kineticFriction", muk}, {"restitution", 0.0},
+               {"orientation", {turn.w(), turn.x(), turn.y(), turn.z()}}};
+  const Vec3 centre(0, 0, -0.5), normal = turn * Vec3::UnitZ(), down = turn * Vec3::UnitX();
+  const Vec3 start = centre + 0.5 * normal + 0.1 * normal - 2.0 * down;
+  Sim sim(sceneOf({roller(shape, start, Vec3::Zero(), Vec3::Zero(), mus, muk, turn)}, {ramp}));
+  sim.run(T);
+  return (sim.data.Y[0].X - start).dot(down);
+}
+
+TEST(ContactSolver, RollingDownAnInclineAtTheClosedFormAcceleration) {
+  const double theta = radians(20.0), T = 1.0;
+  for (const auto& [shape, k] : {std::pair<const char*, double>{"sphere", 0.4}, {"cylinder", 0.5}}) {
+    const double expected = 0.5 * kG * std::sin(theta) / (1.0 + k) * T * T;
+    EXPECT_NEAR(distanceDownIncline(shape, theta, 0.6, 0.5, T), expected, 0.01 * expected) << shape;
+  }
+}
+
+TEST(ContactSolver, SlidingDownAnInclineWhenStaticFrictionCannotHoldTheRoll) {
+  const double theta = radians(20.0), T = 1.0, mu = 0.05;  // rolling needs 0.104 (sphere), 0.121 (cylinder)
+  const double expected = 0.5 * kG * (std::sin(theta) - mu * std::cos(theta)) * T * T;
+  for (const char* shape : {"sphere", "cylinder"})
+    EXPECT_NEAR(distanceDownIncline(shape, theta, mu, mu, T), expected, 0.01 * expected) << shape;
+}
+
+// ---- stacks and piles ---------------------------------------------------------------
+
+// Every body within 1 mm of where it was at 0.5 s after 10 s, the fastest below 1 mm/s
+// at the end, no overlap deeper than 1 mm.
+void expectStands(const json& bodies) {
+  Sim sim(sceneOf(bodies, {floorSurface()}));
+  sim.run(0.5);
+  const std::vector<rigid::BodyState> settled = sim.data.Y;
+  sim.run(9.5);
+  double drift = 0.0;
+  for (size_t i = 0; i < settled.size(); ++i) drift = std::max(drift, (sim.data.Y[i].X - settled[i].X).norm());
+  EXPECT_LT(drift, 1e-3);
+  EXPECT_LT(sim.fastest(), 1e-3);
+  EXPECT_LT(sim.deepestOverlap(), 1e-3);
+  for (size_t i = 0; i < settled.size(); ++i)  // and where it was set down, within the seats' slop
+    EXPECT_LT((sim.data.Y[i].X - Vec3(bodies[i]["position"][0], bodies[i]["position"][1],
+                                      bodies[i]["position"][2])).norm(), 3e-3) << i;
+}
+
+constexpr double kEdge = 0.1;
+
+TEST(ContactSolver, StackOfTenCubesStands) {
+  json bodies = json::array();
+  for (int i = 0; i < 10; ++i)
+    bodies.push_back(box("c" + std::to_string(i), Vec3::Constant(kEdge), Vec3(0, 0, kEdge * (0.5 + i))));
+  expectStands(bodies);
+}
+
+TEST(ContactSolver, PyramidOfTenBoxesStands) {
+  json bodies = json::array();
+  for (int row = 0, k = 0; row < 4; ++row)
+    for (int j = 0; j < 4 - row; ++j, ++k)
+      bodies.push_back(box("c" + std::to_string(k), Vec3::Constant(kEdge),
+                           Vec3((j - 0.5 * (3 - row)) * kEdge, 0, kEdge * (0.5 + row))));
+  expectStands(bodies);
+}
+
+TEST(ContactSolver, WallOfTwentyBricksStands) {
+  json bodies = json::array();
+  for (int row = 0, k = 0; row < 5; ++row)
+    for (int j = 0; j < 4; ++j, ++k)
+      bodies.push_back(box("b" + std::to_string(k), Vec3(2 * kEdge, kEdge, kEdge),
+                           Vec3((j - 1.5) * 2 * kEdge + (row % 2 ? 0.5 * kEdge : 0.0), 0, kEdge * (0.5 + row))));
+  expectStands(bodies);
+}
+
+}  // namespace

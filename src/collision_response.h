@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "collision_detection.h"
+#include "contact_solver.h"
 
 namespace rigid {
 
@@ -16,6 +17,7 @@ struct CollisionCache {
   std::vector<double> halfThickness;    // m, per body (0 for bodies that do not collide)
   std::vector<double> boundingRadius;   // m, per body (0 for bodies that do not collide)
   std::vector<double> travel;           // m, scratch: each body's reach in a step
+  ContactScratchPtr solver;             // the manifold solver's buffers
 };
 
 // Whether some contact is an impact: overlapping while approaching faster than

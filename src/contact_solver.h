@@ -14,6 +14,7 @@
 //   store        the points and their impulses for the next step (ContactMemory).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "collision_detection.h"
@@ -46,13 +47,21 @@ constexpr double kMaxPushOut = 1.0;          // m/s, cap of the position correct
 constexpr double kMatchDistance = 0.01;      // m: a point within this of last step's (body a's frame) is the same
 }  // namespace contact_solver
 
+// The solver's work buffers (contact_solver.cpp), kept from one solve to the next.
+struct ContactScratch;
+struct ContactScratchDeleter {
+  void operator()(ContactScratch* s) const;
+};
+using ContactScratchPtr = std::unique_ptr<ContactScratch, ContactScratchDeleter>;
+
 // Answers the contacts of Y (the end of the step, detected with the speculative
 // margin; `contacts` sorted by pair as the detector returns them): changes P and L by
 // the impulses and X, q by the position correction. `memory` holds last step's points
 // on entry and this step's on return. Adds each body's touching points to count.
+// `scratch` holds no state between solves, only buffers (made on first use).
 ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Contact>& contacts,
                                  const ContactStep& step, std::vector<ContactMemory>& memory,
-                                 std::vector<BodyState>& Y, std::vector<int>& count);
+                                 std::vector<BodyState>& Y, std::vector<int>& count, ContactScratchPtr& scratch);
 
 // Whether some contact of Y is a bouncing impact: overlapping, xi > 0, approaching
 // faster than restingSpeed (m/s). The step then locates the instant of impact.

@@ -43,7 +43,7 @@ WorldData initialData(const WorldModel& model) {
   // friction), and FCL's contacts there are left out (resolveContacts).
   const long colliding = std::count(collides.begin(), collides.end(), true);
   if (colliding >= 2 || (colliding >= 1 && !model.surfaces.empty())) {
-    d.collision = std::make_shared<CollisionCache>(CollisionCache{CollisionDetector(model, collides), {}, {}, {}, {}});
+    d.collision = std::make_shared<CollisionCache>(CollisionCache{CollisionDetector(model, collides), {}, {}, {}, {}, {}});
     for (const BodyConstants& body : model.bodies) {
       d.collision->halfThickness.push_back(body.collides ? halfThickness(body.shape) : 0.0);
       d.collision->boundingRadius.push_back(body.collides ? boundingRadius(body.shape) : 0.0);
@@ -161,7 +161,7 @@ bool manifold(const WorldModel& model) { return model.contactSolver == ContactSo
   if (!detected) detectForResponse(model, data, after);
   Stopwatch response(slotOf(data, &StepProfile::response));
   const ContactStep step{h, restingNormalSpeed(model.gravity, h)};
-  const ContactSolveReport report = solveContacts(model, c->contacts, step, data.contactMemory, after, data.contacts);
+  const ContactSolveReport report = solveContacts(model, c->contacts, step, data.contactMemory, after, data.contacts, c->solver);
   if (data.profiling) {
     ++data.profile.solves;
     data.profile.iterations += report.iterations;

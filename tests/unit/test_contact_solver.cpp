@@ -175,8 +175,9 @@ TEST(ContactSolver, OnePointImpactIsTheSeedsImpulse) {
   std::vector<rigid::BodyState> Y = t.Y;
   std::vector<rigid::ContactMemory> memory;
   std::vector<int> count(2, 0);
+  rigid::ContactScratchPtr scratch;
   const rigid::ContactSolveReport r =
-      rigid::solveContacts(t.model, {t.contact}, {1e-3, 0.02}, memory, Y, count);
+      rigid::solveContacts(t.model, {t.contact}, {1e-3, 0.02}, memory, Y, count, scratch);
   EXPECT_EQ(r.impactPasses, 1);
   expectImpulse(t, Y, j);
   EXPECT_EQ(count, (std::vector<int>{1, 1}));
@@ -190,7 +191,9 @@ TEST(ContactSolver, OnePointRestingApproachIsTheSeedsImpulseWithoutBounce) {
   std::vector<rigid::BodyState> Y = t.Y;
   std::vector<rigid::ContactMemory> memory;
   std::vector<int> count(2, 0);
-  const rigid::ContactSolveReport r = rigid::solveContacts(t.model, {t.contact}, {1e-3, 100.0}, memory, Y, count);
+  rigid::ContactScratchPtr scratch;
+  const rigid::ContactSolveReport r =
+      rigid::solveContacts(t.model, {t.contact}, {1e-3, 100.0}, memory, Y, count, scratch);
   EXPECT_EQ(r.impactPasses, 0);
   EXPECT_LE(r.iterations, 2);
   expectImpulse(t, Y, j);

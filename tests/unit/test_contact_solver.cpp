@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -385,6 +386,165 @@ TEST(ContactSolver, WallOfTwentyBricksStands) {
       bodies.push_back(box("b" + std::to_string(k), Vec3(2 * kEdge, kEdge, kEdge),
                            Vec3((j - 1.5) * 2 * kEdge + (row % 2 ? 0.5 * kEdge : 0.0), 0, kEdge * (0.5 + row))));
   expectStands(bodies);
+}
+
+// The benchmark's pile (scripts/bench_scenes.py): columns of 0.1 m cubes 2 cm apart on
+// a square grid, layers upwards, each tilted a little so that they land on edges.
+json pile(int n, int side) {
+  json bodies = json::array();
+  const double gap = 0.02, pitch = kEdge + gap;
+  for (int k = 0; k < n; ++k) {
+    const int layer = k / (side * side), cell = k % (side * side), ix = cell / side, iy = cell % side;
+    const Vec3 X((ix - 0.5 * (side - 1)) * pitch, (iy - 0.5 * (side - 1)) * pitch,
+                 0.5 * kEdge + gap + layer * (pitch + gap));
+    const Quat q = Quat(Eigen::AngleAxisd(0.05 * std::cos(2.3 * k), Vec3::UnitY())) *
+                   Quat(Eigen::AngleAxisd(0.05 * std::sin(1.7 * k), Vec3::UnitX()));
+    bodies.push_back(box("c" + std::to_string(k), Vec3::Constant(kEdge), X, q));
+  }
+  return bodies;
+}
+
+TEST(ContactSolver, PileOfAHundredCubesComesToRest) {
+  Sim sim(sceneOf(pile(100, 5), {floorSurface()}, 2e-3));
+  sim.run(3.0);
+  EXPECT_LT(sim.fastest(), 0.01);
+  EXPECT_LT(sim.deepestOverlap(), 1e-3);
+}
+
+// Contact alone never adds mechanical energy: through a falling, tumbling pile no step
+// ends with more than the last one's plus 1e-5 J (the split impulse moves bodies out of
+// overlaps against gravity: 2e-6 J measured at most), and the run ends below its start.
+TEST(ContactSolver, MechanicalEnergyNeverRisesThroughContact) {
+  Sim sim(sceneOf(pile(27, 3), {floorSurface()}, 2e-3));
+  const double start = sim.energy();
+  double last = start, worst = -1e300;
+  sim.run(1.5, [&] {
+    const double now = sim.energy();
+    worst = std::max(worst, now - last);
+    last = now;
+  });
+  EXPECT_LT(worst, 1e-5);
+  EXPECT_LT(last, start);
+  std::printf("largest rise of one step %.3g J; %.3g J of %.3g J left\n", worst, last, start);
+}
+
+// ---- what the first model did and this one keeps ----------------------------------------
+
+// A ball dropped from H bounces to xi^2 H whatever the step: the impact is located in
+// the step and answered by the seed's impulse at that instant.
+double reboundApex(double step) {
+  json ball = {{"name", "ball"}, {"shape", {{"type", "sphere"}, {"radius", 0.1}}}, {"mass", 1.0},
+               {"position", {0, 0, 1.1}}, {"restitution", 0.8}};
+  Sim sim(sceneOf(ball, floorSurface(0.6, 0.6, 0.8), step));
+  double apex = 0.0;
+  bool bounced = false;
+  sim.run(0.9, [&] {
+    bounced = bounced || sim.data.aux[0].V.z() > 0.0;
+    if (bounced) apex = std::max(apex, sim.data.Y[0].X.z() - 0.1);
+  });
+  return apex;
+}
+
+TEST(ContactSolver, BounceHeightIsXiSquaredWhateverTheStep) {
+  for (double step : {1e-3, 4e-3}) EXPECT_NEAR(reboundApex(step), 0.64, 2e-3) << step;
+}
+
+// Newton's cradle: four touching balls in a row, xi = 1, the first arriving at 1 m/s:
+// the impact passes down the row and the last one leaves at 1 m/s, the rest stay.
+TEST(ContactSolver, NewtonsCradlePassesTheImpactOn) {
+  json balls = json::array();
+  for (int i = 0; i < 4; ++i)
+    balls.push_back({{"name", "b" + std::to_string(i)}, {"shape", {{"type", "sphere"}, {"radius", 0.1}}},
+                     {"mass", 1.0}, {"position", {i == 0 ? -0.05 : 0.2 * i, 0, 1}},
+                     {"velocity", {i == 0 ? 1.0 : 0.0, 0, 0}}, {"restitution", 1.0}});
+  json scene = sceneOf(balls, floorSurface());
+  scene["gravity"] = {0, 0, 0};
+  Sim sim(scene);
+  sim.run(0.5);
+  for (int i = 0; i < 3; ++i) EXPECT_LT(sim.data.aux[i].V.norm(), 1e-9) << i;
+  EXPECT_NEAR(sim.data.aux[3].V.x(), 1.0, 1e-9);
+}
+
+// A row of dominoes 0.2 m tall, 0.12 m apart, the first one tipped: each falls in turn
+// and ends leaning on the next one (between 60 and 85 deg, the last on the floor at 90).
+TEST(ContactSolver, DominoesFallInSequence) {
+  json row = json::array();
+  for (int i = 0; i < 6; ++i) {
+    json d = box("d" + std::to_string(i), Vec3(0.02, 0.1, 0.2), Vec3(0.12 * i, 0, 0.1));
+    if (i == 0) d["angularVelocity"] = {0, 4.0, 0};
+    row.push_back(d);
+  }
+  Sim sim(sceneOf(row, floorSurface()));
+  std::vector<double> fell(6, -1.0);  // when each passed 30 deg
+  double t = 0.0;
+  sim.run(3.0, [&] {
+    t += sim.model.maxStep;
+    for (int i = 0; i < 6; ++i)
+      if (fell[i] < 0.0 && std::abs(sim.R(i)(2, 2)) < std::cos(radians(30.0))) fell[i] = t;
+  });
+  for (int i = 0; i < 6; ++i) {
+    ASSERT_GT(fell[i], 0.0) << i;
+    if (i > 0) {
+      EXPECT_GT(fell[i], fell[i - 1]) << i;
+    }
+    const double tilt = std::acos(std::min(1.0, std::abs(sim.R(i)(2, 2))));
+    if (i < 5) {
+      EXPECT_GT(tilt, radians(60.0)) << i;
+      EXPECT_LT(tilt, radians(85.0)) << i;
+    } else {
+      EXPECT_NEAR(tilt, radians(90.0), radians(1.0));
+    }
+  }
+  EXPECT_LT(sim.fastest(), 1e-3);
+}
+
+// A box resting on the floor: once seated, every solve starts from last step's
+// impulses and has nothing left to do (one or two iterations); its four points carry
+// m g h between them.
+TEST(ContactSolver, WarmStartedRestingBoxNeedsNoIterations) {
+  Sim sim(sceneOf(box("cube", Vec3::Constant(kEdge), Vec3(0, 0, 0.5 * kEdge)), floorSurface()));
+  sim.run(0.5);
+  sim.data.profiling = true;
+  sim.run(0.5);
+  EXPECT_LE(sim.data.profile.iterations, 2 * sim.data.profile.solves);
+  double carried = 0.0;
+  for (const rigid::ContactMemory& m : sim.data.contactMemory) carried += m.normalImpulse;
+  EXPECT_EQ(sim.data.contactMemory.size(), 4u);
+  EXPECT_NEAR(carried, kG * sim.model.maxStep, 1e-9);
+}
+
+// Speculative points: an inelastic cube falling at 3 m/s onto another is stopped at the
+// gap, not by a push out of an overlap; no overlap beyond the slop's order.
+TEST(ContactSolver, SpeculativePointsLandAFastCubeWithoutOverlap) {
+  json bottom = box("bottom", Vec3::Constant(kEdge), Vec3(0, 0, 0.5 * kEdge));
+  json top = box("top", Vec3::Constant(kEdge), Vec3(0, 0, 1.5 * kEdge + 0.05));
+  top["velocity"] = {0, 0, -3.0};
+  Sim sim(sceneOf(json::array({bottom, top}), floorSurface()));
+  double deepest = 0.0;
+  sim.run(0.3, [&] { deepest = std::max(deepest, sim.deepestOverlap()); });
+  EXPECT_LT(deepest, 3e-4);
+  EXPECT_LT(sim.fastest(), 1e-3);
+}
+
+// Two runs from the same start are bitwise equal, and a copy of the data taken midway
+// (what an FMU state holds, the contact memory with it) continues bitwise.
+TEST(ContactSolver, RunsAreBitwiseReproducibleAndACopyContinuesBitwise) {
+  const json scene = sceneOf(pile(27, 3), {floorSurface()}, 2e-3);
+  Sim a(scene), b(scene);
+  a.run(0.4);
+  b.run(0.4);
+  Sim c(scene);
+  c.data = a.data;  // saved ...
+  a.run(0.3);
+  b.run(0.3);
+  c.run(0.3);  // ... and restored
+  for (size_t i = 0; i < a.data.Y.size(); ++i)
+    for (const Sim* other : {&b, &c}) {
+      EXPECT_EQ(a.data.Y[i].X, other->data.Y[i].X) << i;
+      EXPECT_EQ(a.data.Y[i].q.coeffs(), other->data.Y[i].q.coeffs()) << i;
+      EXPECT_EQ(a.data.Y[i].P, other->data.Y[i].P) << i;
+      EXPECT_EQ(a.data.Y[i].L, other->data.Y[i].L) << i;
+    }
 }
 
 }  // namespace

@@ -175,9 +175,12 @@ void prepareRows(const WorldModel& model, const std::vector<Contact>& contacts, 
     r.b = c.b >= 0 ? c.b : s.staticSlot();
     prepareBody(model, Y, c.a, s);
     if (c.b >= 0) prepareBody(model, Y, c.b, s);
-    r.ra = c.point - Y[c.a].X;
+    // Each body's lever arm to its own surface point (the detector's point is midway
+    // in the overlap): a sphere sunk by the step's g h^2 / 2 is then turned by friction
+    // about its radius R, not R - depth / 2.
+    r.ra = c.point + 0.5 * c.depth * c.normal - Y[c.a].X;
     r.localA = Y[c.a].q.normalized().conjugate() * r.ra;
-    r.rb = c.b >= 0 ? Vec3(c.point - Y[c.b].X) : Vec3::Zero();
+    r.rb = c.b >= 0 ? Vec3(c.point - 0.5 * c.depth * c.normal - Y[c.b].X) : Vec3::Zero();
     const SolverBody& A = s.bodies[r.a];
     const SolverBody& B = s.bodies[r.b];
     r.n = axisOf(A, B, r.ra, r.rb, c.normal);

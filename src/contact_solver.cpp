@@ -401,7 +401,7 @@ void solveVelocities(Solver& s, std::vector<BodyState>& Y, ContactSolveReport& r
 // the slop in one step, solved like the normal impulses (accumulated, >= 0). They are
 // integrated into the positions and dropped: velocities, and so the energy, are left as
 // the solve made them.
-void solvePseudoVelocities(Solver& s, double h) {
+void solvePseudoVelocities(Solver& s, double h, double share) {
   // the overlap each row has left after the solve's own move (correctPositions); only
   // rows deeper than the slop take part
   s.deep.clear();
@@ -410,7 +410,7 @@ void solvePseudoVelocities(Solver& s, double h) {
     const SolverBody& A = s.bodies[r.a];
     const SolverBody& B = s.bodies[r.b];
     const double solved = r.n.d.dot(B.v - B.v0 - A.v + A.v0) + r.n.rbXd.dot(B.w - B.w0) - r.n.raXd.dot(A.w - A.w0);
-    const double depth = r.depth - 0.5 * h * solved;
+    const double depth = r.depth - share * h * solved;
     if (depth <= kSlop) continue;
     r.pushOut = std::min(kBaumgarte * (depth - kSlop) / h, kMaxPushOut);
     s.deep.push_back(i);
@@ -437,18 +437,19 @@ void solvePseudoVelocities(Solver& s, double h) {
 }
 
 // The positions: the pseudo-velocities' move, and the move of the solve's impulses
-// taken as a constant force over the step (h/2 times the velocity change they made,
-// as the integrator moves a body under a constant force). The integrator moved every
+// taken as a constant force over the step (`share` of h times the velocity change they
+// made: h/2 for the methods exact on a constant force, as the integrator would move a
+// body under one). The integrator moved every
 // body by the step's applied forces alone: a body resting on the floor sank g h^2 / 2
 // and a box held by static friction on a ramp slid g sin(theta) h^2 / 2; the solve's
 // move takes both back, so that what contact holds does not creep.
-void correctPositions(Solver& s, double h, std::vector<BodyState>& Y) {
-  solvePseudoVelocities(s, h);
+void correctPositions(Solver& s, double h, double share, std::vector<BodyState>& Y) {
+  solvePseudoVelocities(s, h, share);
   for (size_t i = 0; i + 1 < s.bodies.size(); ++i) {
     const SolverBody& b = s.bodies[i];
     if (!s.involved[i]) continue;
-    const Vec3 move = h * b.vp + 0.5 * h * (b.v - b.v0);
-    const Vec3 turn = h * b.wp + 0.5 * h * (b.w - b.w0);
+    const Vec3 move = h * b.vp + share * h * (b.v - b.v0);
+    const Vec3 turn = h * b.wp + share * h * (b.w - b.w0);
     if (move.isZero(0.0) && turn.isZero(0.0)) continue;
     Y[i].X += move;
     const Quat& q = Y[i].q;
@@ -526,7 +527,7 @@ ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Cont
   markVelocities(s);
   warmStart(memory, s, Y);
   solveVelocities(s, Y, report);
-  correctPositions(s, step.h, Y);
+  correctPositions(s, step.h, step.moveShare, Y);
   store(s, std::max(kVelocityTolerance, 0.01 * step.restingSpeed), memory);
   return report;
 }

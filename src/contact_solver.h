@@ -27,6 +27,9 @@ namespace rigid {
 struct ContactStep {
   double h = 0.0;             // s, the internal step
   double restingSpeed = 0.0;  // m/s: a slower approach does not bounce (restingNormalSpeed)
+  // Share of h times the solve's velocity change that moves the bodies: the share by
+  // which the integrator moves a body under a constant force (constantForceDisplacement).
+  double moveShare = 0.5;
 };
 
 struct ContactSolveReport {

@@ -160,7 +160,7 @@ bool manifold(const WorldModel& model) { return model.contactSolver == ContactSo
   if (!c) return;
   if (!detected) detectForResponse(model, data, after);
   Stopwatch response(slotOf(data, &StepProfile::response));
-  const ContactStep step{h, restingNormalSpeed(model.gravity, h)};
+  const ContactStep step{h, restingNormalSpeed(model.gravity, h), constantForceDisplacement(model.method)};
   const ContactSolveReport report = solveContacts(model, c->contacts, step, data.contactMemory, after, data.contacts, c->solver);
   if (data.profiling) {
     ++data.profile.solves;

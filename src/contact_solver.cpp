@@ -73,6 +73,7 @@ struct ContactScratch {
   std::vector<Row> rows;
   std::vector<Row> impacts;        // answerImpacts' merged pairs
   std::vector<size_t> deep;        // rows overlapping by more than the slop
+  std::vector<char> used;          // warmStart: memory points already matched
   int staticSlot() const { return static_cast<int>(bodies.size()) - 1; }
 };
 
@@ -277,45 +278,68 @@ void markVelocities(Solver& s) {
   for (SolverBody& b : s.bodies) b.v0 = b.v, b.w0 = b.w;
 }
 
+// The impulses (lambda_n, lambda_t1, lambda_t2) of one row at once.
+void applyRowImpulse(Solver& s, const Row& r, double ln, double l1, double l2, std::vector<BodyState>& Y) {
+  const Vec3 J = ln * r.n.d + l1 * r.t1.d + l2 * r.t2.d;
+  SolverBody& A = s.bodies[r.a];
+  A.v -= A.invMass * J;
+  A.w -= ln * r.n.spinA + l1 * r.t1.spinA + l2 * r.t2.spinA;
+  Y[r.a].P -= J;
+  Y[r.a].L -= ln * r.n.raXd + l1 * r.t1.raXd + l2 * r.t2.raXd;
+  if (r.b == s.staticSlot()) return;
+  SolverBody& B = s.bodies[r.b];
+  B.v += B.invMass * J;
+  B.w += ln * r.n.spinB + l1 * r.t1.spinB + l2 * r.t2.spinB;
+  Y[r.b].P += J;
+  Y[r.b].L += ln * r.n.rbXd + l1 * r.t1.rbXd + l2 * r.t2.rbXd;
+}
+
+// One row takes the impulses of memory[m], clamped to its friction disc.
+void remember(const ContactMemory& m, Solver& s, Row& r, std::vector<BodyState>& Y) {
+  r.sliding = m.sliding;
+  r.remembered = true;
+  r.lambdaN = m.normalImpulse;
+  r.lambdaT1 = m.tangentImpulse.dot(r.t1.d);
+  r.lambdaT2 = m.tangentImpulse.dot(r.t2.d);
+  const double limit = (r.sliding ? r.k.muk : r.k.mus) * r.lambdaN, t = length(r.lambdaT1, r.lambdaT2);
+  if (t > limit) r.lambdaT1 *= limit / t, r.lambdaT2 *= limit / t;
+  applyRowImpulse(s, r, r.lambdaN, r.lambdaT1, r.lambdaT2, Y);
+}
+
 // Each row takes the impulses of last step's nearest point of the same pair (body a's
-// frame, within kMatchDistance), each old point used once, and applies them.
+// frame, within kMatchDistance), each old point used once, and applies them. Rows and
+// memory are both in the detector's pair order: one search per pair. A body sticks or
+// slides as a whole, so a pair's new points take its remembered state.
 void warmStart(const std::vector<ContactMemory>& memory, Solver& s, std::vector<BodyState>& Y) {
-  std::vector<bool> used(memory.size(), false);
+  s.used.assign(memory.size(), 0);
   auto before = [](const ContactMemory& m, const std::tuple<int, int, int>& key) {
     return pairKey(m.a, m.b, m.surface) < key;
   };
-  for (Row& r : s.rows) {
-    const Contact& c = *r.contact;
-    const auto key = pairKey(c.a, c.b, c.surface);
-    size_t best = memory.size();
-    double nearest = kMatchDistance * kMatchDistance;
-    for (auto it = std::lower_bound(memory.begin(), memory.end(), key, before);
-         it != memory.end() && pairKey(it->a, it->b, it->surface) == key; ++it) {
-      const size_t m = static_cast<size_t>(it - memory.begin());
-      const double d2 = (it->localA - r.localA).squaredNorm();
-      if (!used[m] && d2 < nearest) nearest = d2, best = m;
-    }
-    if (best == memory.size()) continue;
-    used[best] = true;
-    r.sliding = memory[best].sliding;
-    r.remembered = true;
-    r.lambdaN = memory[best].normalImpulse;
-    r.lambdaT1 = memory[best].tangentImpulse.dot(r.t1.d);
-    r.lambdaT2 = memory[best].tangentImpulse.dot(r.t2.d);
-    const double limit = (r.sliding ? r.k.muk : r.k.mus) * r.lambdaN, t = length(r.lambdaT1, r.lambdaT2);
-    if (t > limit) r.lambdaT1 *= limit / t, r.lambdaT2 *= limit / t;
-    applyImpulse(s, r, r.n, r.lambdaN, Y);
-    applyImpulse(s, r, r.t1, r.lambdaT1, Y);
-    applyImpulse(s, r, r.t2, r.lambdaT2, Y);
-  }
-  // A body sticks or slides as a whole: a pair's new points take its remembered state.
+  auto from = memory.begin();
   for (size_t i = 0; i < s.rows.size();) {
     const size_t end = pairEnd(s, i);
-    for (size_t k = i; k < end; ++k)
-      if (s.rows[k].remembered) {
-        for (size_t j = i; j < end; ++j) s.rows[j].sliding = s.rows[k].sliding;
-        break;
+    const Contact& c = *s.rows[i].contact;
+    const auto key = pairKey(c.a, c.b, c.surface);
+    from = std::lower_bound(from, memory.end(), key, before);
+    auto to = from;
+    while (to != memory.end() && pairKey(to->a, to->b, to->surface) == key) ++to;
+    int state = -1;  // the pair's remembered sliding state, -1: none
+    for (size_t k = i; k < end; ++k) {
+      Row& r = s.rows[k];
+      size_t best = memory.size();
+      double nearest = kMatchDistance * kMatchDistance;
+      for (auto it = from; it != to; ++it) {
+        const size_t m = static_cast<size_t>(it - memory.begin());
+        const double d2 = (it->localA - r.localA).squaredNorm();
+        if (!s.used[m] && d2 < nearest) nearest = d2, best = m;
       }
+      if (best == memory.size()) continue;
+      s.used[best] = 1;
+      remember(memory[best], s, r, Y);
+      state = r.sliding ? 1 : 0;
+    }
+    if (state >= 0)
+      for (size_t k = i; k < end; ++k) s.rows[k].sliding = state == 1;
     i = end;
   }
 }

@@ -12,7 +12,13 @@ here is asserted; the targets are printed with PASS or MISS.
    report's reference), ours and theirs, so that ratios are quoted at equal accuracy;
    then the pile of 1000 (100 in quick mode) timed again, ours and theirs interleaved
    round by round, the ratio its target is judged on.
-4. Writes OUT/performance.md, OUT/performance/*.png and OUT/performance/bench.json.
+4. The manifold contact solver (solver.contacts = "manifold", BM_PileManifold): the
+   same piles over 3 s, timed while they fall (first second) and at rest (third
+   second), with the stages' shares, the solver's iterations per solve, the overlap in
+   the output state and the fastest body at 3 s; the pile of 1000 (100 in quick mode)
+   at rest timed round by round with MuJoCo's at rest (Euler), the ratio its target is
+   judged on.
+5. Writes OUT/performance.md, OUT/performance/*.png and OUT/performance/bench.json.
 
 Times are CPU times (the machine is shared), medians of repeats.
 
@@ -44,6 +50,8 @@ PEERS_PYTHON = ROOT / ".venv-peers" / "bin" / "python"
 RK4_TARGET_NS = 100.0        # ns per body-step, free bodies, rk4, N = 1000
 PILE_RATIO_TARGET = 0.5      # our time per simulated second / MuJoCo's, pile of 1000
 PENETRATION_TARGET = 1e-3    # m
+# the stages of WorldData::profile, in the manifold section's order
+STAGES = ("integration", "broadphase", "narrowphase", "response")
 
 
 def log(msg):
@@ -83,7 +91,12 @@ def run_core(build, scenes, quick, pattern=None, reps=1):
             if reps > 1 and b.get("aggregate_name") != "median":
                 continue
             parts = b["run_name"].split("/")
-            key = ("free", parts[1], int(parts[2])) if parts[0] == "BM_Free" else ("pile", int(parts[1]))
+            if parts[0] == "BM_Free":
+                key = ("free", parts[1], int(parts[2]))
+            elif parts[0] == "BM_PileManifold":
+                key = ("manifold", int(parts[1]))
+            else:
+                key = ("pile", int(parts[1]))
             results[key] = b
     return results, context
 
@@ -122,6 +135,72 @@ def pile_table(core):
                            max_overlap_state_m=b.get("max_overlap_state_m", math.nan),
                            max_speed_end_mps=b.get("max_speed_end_mps", math.nan))
     return dict(sorted(out.items()))
+
+
+def manifold_figures(b):
+    """The figures of one BM_PileManifold entry: per window (fall: 0-1 s, rest: 2-3 s)
+    the CPU time per simulated second and per step, the stages' shares of the steps'
+    wall time (the profile's clock; "other" is the rest of the step), the solver's
+    velocity iterations per solve; and over the run the overlap in the output state and
+    the fastest body's speed at 1 s and 3 s."""
+    out = {"steps_ok": b["steps_ok"], "steps": b["steps_planned"],
+           "max_overlap_state_m": b["max_overlap_state_m"], "max_overlap_rest_m": b["max_overlap_rest_m"],
+           "max_speed_1s_mps": b["max_speed_1s_mps"], "max_speed_3s_mps": b["max_speed_3s_mps"]}
+    for w in ("fall", "rest"):
+        steps, cpu, wall = b[f"{w}_steps"], b[f"{w}_cpu_s"], b[f"{w}_wall_ns"]
+        shares = {s: b[f"{w}_ns_{s}"] / wall if wall > 0 else math.nan for s in STAGES}
+        shares["other"] = 1.0 - sum(shares.values())
+        solves = b[f"{w}_solves"]
+        out[w] = {"steps": steps,
+                  # a window cut short by a failed step: the time of the steps it has
+                  "s_per_simulated_s": cpu / (steps * bench_scenes.PILE_STEP) if steps else math.nan,
+                  "us_per_step": cpu / steps * 1e6 if steps else math.nan,
+                  "shares": shares, "solves_per_step": solves / steps if steps else math.nan,
+                  "iterations_per_solve": b[f"{w}_iterations_per_solve"] if solves else math.nan}
+    return out
+
+
+def median_entry(entries):
+    """Each numeric field's median over several runs of one benchmark, as Google
+    Benchmark's median aggregate takes it of every counter."""
+    return {k: statistics.median(e[k] for e in entries) for k, v in entries[0].items()
+            if isinstance(v, (int, float))}
+
+
+def run_manifold(build, scenes, folder, quick):
+    """BM_PileManifold over the pile counts. The largest pile (1000; 100 in quick mode)
+    is timed round by round with MuJoCo's at rest, ours once then theirs once, each in
+    its own process (as interleaved_pile_ratio does for the first second): its figures
+    are the medians over the rounds, so that the rounds are also its repetitions and the
+    slow pile is not run twice. Without MuJoCo, its repetitions alone. Returns
+    ({n: figures}, {n, rounds, ratio} or None)."""
+    counts = bench_scenes.PILE_COUNTS[:2] if quick else bench_scenes.PILE_COUNTS
+    big, rounds = counts[-1], 1 if quick else 3
+    entries = {}
+    if len(counts) > 1:
+        small, _ = run_core(build, scenes, quick, pattern=f"^BM_PileManifold/({'|'.join(map(str, counts[:-1]))})/",
+                            reps=1 if quick else 3)
+        entries.update({k[1]: b for k, b in small.items()})
+    interleaved = None
+    if PEERS_PYTHON.exists():
+        runs, rows = [], []
+        for _ in range(rounds):
+            ours, _ = run_core(build, scenes, quick, pattern=f"^BM_PileManifold/{big}/", reps=1)
+            runs.append(ours[("manifold", big)])
+            mine = manifold_figures(runs[-1])["rest"]["s_per_simulated_s"]
+            out = pathlib.Path(folder) / "pile_rest_timing.json"
+            subprocess.run([str(PEERS_PYTHON), str(ROOT / "scripts" / "bench_peers.py"), str(scenes), str(out),
+                            "--pile-timing", str(big), "--at-rest"], check=True)
+            theirs = json.loads(out.read_text())["s_per_simulated_s"]
+            rows.append({"ours": mine, "mujoco": theirs, "ratio": mine / theirs})
+            log(f"manifold pile {big} at rest, round {len(rows)}: ours {mine:.3g} s, MuJoCo {theirs:.3g} s "
+                f"per simulated s, ratio {mine / theirs:.2f}")
+        entries[big] = median_entry(runs)
+        interleaved = {"n": big, "rounds": rows, "ratio": statistics.median(r["ratio"] for r in rows)}
+    else:
+        ours, _ = run_core(build, scenes, quick, pattern=f"^BM_PileManifold/{big}/", reps=rounds)
+        entries[big] = ours[("manifold", big)]
+    return {n: manifold_figures(entries[n]) for n in sorted(entries)}, interleaved
 
 
 # ----------------------------------------------------------------------------------
@@ -350,7 +429,35 @@ def targets(free, piles, peers, interleaved=None):
     return rows
 
 
-def plots(out_dir, free, piles, peers):
+def manifold_targets(manifold, peers, interleaved):
+    """The manifold solver's targets: its pile of 1000 at rest against MuJoCo's default
+    at rest (judged on the interleaved rounds), the overlap in the output state over the
+    3 s, and the growth of a step's time, falling and at rest."""
+    rows = []
+    label = "manifold, pile of 1000 at rest (2–3 s): time per simulated second ≤ 0.5x MuJoCo's (Euler, at rest)"
+    if interleaved and interleaved["n"] == 1000:
+        rounds = ", ".join(f"{r['ratio']:.2f}" for r in interleaved["rounds"])
+        rows.append((label, f"ratio {interleaved['ratio']:.2f}, the median of {len(interleaved['rounds'])} "
+                            f"interleaved rounds ({rounds})",
+                     "PASS" if interleaved["ratio"] <= PILE_RATIO_TARGET else "MISS"))
+    else:
+        rows.append((label, "not measured (quick run: no pile of 1000)" if peers else "not measured (no MuJoCo)", "–"))
+    if manifold:
+        big = max(manifold)
+        m = manifold[big]
+        rows.append((f"manifold, pile of {big}: penetration ≤ 1 mm",
+                     f"{m['max_overlap_state_m'] * 1e3:.2f} mm in the output state over 0–3 s "
+                     f"({m['max_overlap_rest_m'] * 1e3:.2f} mm at rest, 2–3 s)",
+                     "PASS" if m["max_overlap_state_m"] <= PENETRATION_TARGET else "MISS"))
+    for w, name in (("fall", "falling"), ("rest", "at rest")):
+        pts = {n: m[w]["us_per_step"] for n, m in manifold.items() if math.isfinite(m[w]["us_per_step"])}
+        for a, b, s, limit in growth(pts):
+            rows.append((f"manifold {name}: growth {a} → {b} no faster than N log N (slope ≤ {limit:.2f})",
+                         f"slope {s:.2f}", "PASS" if s <= limit else "MISS"))
+    return rows
+
+
+def plots(out_dir, free, piles, peers, manifold=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -378,7 +485,12 @@ def plots(out_dir, free, piles, peers):
 
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.6))
     ns = sorted(piles)
-    ax.loglog(ns, [piles[n]["total_us"] for n in ns], "o-", lw=2.4, label="rigidfmu (rk4)")
+    ax.loglog(ns, [piles[n]["total_us"] for n in ns], "o-", lw=2.4, label="rigidfmu (rk4, centroid contacts)")
+    if manifold:
+        ms = sorted(manifold)
+        for w, style, name in (("fall", "D-", "falling, 0–1 s"), ("rest", "D--", "at rest, 2–3 s")):
+            ax.loglog(ms, [manifold[n][w]["us_per_step"] for n in ms], style, lw=1.4,
+                      label=f"rigidfmu manifold solver, {name}")
     for integ, style in (("Euler", "s--k"), ("RK4", "^:k")):
         rows = [r for r in (peers or {}).get("piles", []) if r["integrator"] == integ]
         if rows:
@@ -406,7 +518,7 @@ def plots(out_dir, free, piles, peers):
     bx.set_ylim(0, 112)
     bx.set_xlabel("cubes N")
     bx.set_ylabel("share of the step's CPU time (%)")
-    bx.set_title("rigidfmu: where a pile's step goes")
+    bx.set_title("rigidfmu (centroid contacts): where a pile's step goes")
     bx.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
     fig.tight_layout()
     files.append(out_dir / "piles.png")
@@ -453,7 +565,9 @@ def write_markdown(path, r):
       "and MuJoCo run the same files. *Free*: N torque-free tumbling boxes, inertia "
       "diag(1, 2, 3) kg m², no gravity, no collisions, h = 1 ms. *Pile*: N cubes of 0.1 m "
       "and 1 kg (restitution 0, friction 0.6) in columns above a floor, falling for 1 s "
-      "of simulated time, h = 2 ms (MuJoCo's default timestep).\n")
+      "of simulated time, h = 2 ms (MuJoCo's default timestep). *Manifold piles* "
+      "(`pile_manifold_<N>.json`): the same bodies and floor with `\"solver\": {\"contacts\": "
+      "\"manifold\"}`, over 3 s.\n")
     w("![free bodies](performance/free_bodies.png)\n")
     w("![piles](performance/piles.png)\n")
 
@@ -461,7 +575,8 @@ def write_markdown(path, r):
     w("| target | measured | |\n|---|---|---|")
     for label, value, status in targets_rows:
         w(f"| {label} | {value} | **{status}** |")
-    w("")
+    w("\nThese are the default contact model's; the manifold solver's targets are in "
+      "[its section](#manifold-contact-solver).\n")
 
     w("## Core: free bodies (ns per body-step)\n")
     w("`rigid-bench-core`, `BM_Free/<method>/<N>`: one world step of N bodies divided by N.\n")
@@ -584,8 +699,9 @@ def write_markdown(path, r):
               (f"rk4, h {o['dt']:g} | {o['error_rad']:.2g} rad | **{e['ratio']:.3f}** |" if o else
                "none of our steps reaches it | – | – |"))
         w("")
+    write_manifold_section(w, r)
     w("## How it is measured\n")
-    w("- `./scripts/bench.sh` (`--quick`: fewer repeats, no 10000 free bodies, no pile of 1000; "
+    w("- `./scripts/bench.sh` (`--quick`: fewer repeats, no 10000 free bodies, no pile of 1000 with either solver; "
       "the test suite runs it and checks that the report is complete, never the times).")
     w("- Core: Google Benchmark, CPU time; free bodies: repetitions with the median "
       "aggregate; piles: one simulated second per repetition (the same start each time), "
@@ -593,8 +709,102 @@ def write_markdown(path, r):
     w("- FMU: `time.process_time` around loops of fmpy calls; warm-up calls first.")
     w("- MuJoCo: `time.process_time` around `mj_step(m, d, nstep)`; penetration and "
       "contacts from a separate, untimed run.")
+    w("- Manifold piles: 3 s per repetition, each step timed by the thread's CPU clock (Google "
+      "Benchmark's) and the steady clock (the profile's), the probes outside; the largest pile's "
+      "repetitions are the rounds interleaved with MuJoCo's at rest, medians over them.")
     w("- Raw figures: `performance/bench.json`.")
     path.write_text("\n".join(L) + "\n")
+
+
+def pct(x):
+    return f"{100 * x:.1f} %" if math.isfinite(x) else "–"
+
+
+def write_manifold_section(w, r):
+    manifold, peers, il = r.get("manifold") or {}, r["peers"], r.get("manifold_interleaved")
+    piles = r["piles"]
+    w("## Manifold contact solver\n")
+    w("`BM_PileManifold/<N>`: the piles above answered by the manifold solver "
+      "(`\"solver\": {\"contacts\": \"manifold\"}`, `pile_manifold_<N>.json`: same bodies, floor "
+      "and step), 3 s of simulated time from the same start. The old model never lets a pile "
+      "settle, so its benchmark times the first second only; this one times the first second "
+      "(*falling*) and the third (*at rest*, after 2 s untimed), each step by this thread's CPU "
+      "clock with the probes outside. *Stages*: `WorldData::profile` over the window's steps, "
+      "as shares of their wall time (the profile's clock); *other* is the rest of the step. "
+      "*Iterations per solve*: the solver's velocity iterations (`profile.iterations / "
+      "profile.solves`). Overlap: in the output state, as for the piles above, the deepest over "
+      "all steps of the 3 s and over the third second. The old model's time per simulated "
+      "second (`BM_Pile`, first second) stands beside.\n")
+    if not manifold:
+        w("Not measured in this run.\n")
+        return
+    w("| target | measured | |\n|---|---|---|")
+    for label, value, status in r["manifold_targets"]:
+        w(f"| {label} | {value} | **{status}** |")
+    w("")
+    w("| N | falling: per step | falling: per simulated second | at rest: per step | at rest: per "
+      "simulated second | old model (centroid) per simulated second, falling | iterations per solve, "
+      "falling | iterations per solve, at rest | max overlap in the output state, 0–3 s | at rest, "
+      "2–3 s | fastest body at 1 s | fastest body at 3 s |")
+    w("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for n, m in manifold.items():
+        f, s = m["fall"], m["rest"]
+        old = piles.get(n)
+        w(f"| {n} | {f['us_per_step']:.1f} µs | {fmt_s(f['s_per_simulated_s'])} | {s['us_per_step']:.1f} µs | "
+          f"**{fmt_s(s['s_per_simulated_s'])}** | {fmt_s(old['s_per_simulated_s']) if old else '–'} | "
+          f"{f['iterations_per_solve']:.1f} | {s['iterations_per_solve']:.1f} | "
+          f"{m['max_overlap_state_m'] * 1e3:.2f} mm | {m['max_overlap_rest_m'] * 1e3:.2f} mm | "
+          f"{m['max_speed_1s_mps']:.3g} m/s | {m['max_speed_3s_mps']:.3g} m/s |")
+    incomplete = [n for n, m in manifold.items() if m["steps_ok"] < m["steps"]]
+    if incomplete:
+        w(f"\nA step failed in the manifold piles of {incomplete}: their windows cover the steps before it.")
+    w("")
+    w("Where a step goes (shares of the steps' wall time):\n")
+    w("| N | window | " + " | ".join(STAGES) + " | other |")
+    w("|---:|---|" + "---:|" * (len(STAGES) + 1))
+    for n, m in manifold.items():
+        for wnd, name in (("fall", "falling, 0–1 s"), ("rest", "at rest, 2–3 s")):
+            sh = m[wnd]["shares"]
+            w(f"| {n} | {name} | " + " | ".join(pct(sh[k]) for k in STAGES + ("other",)) + " |")
+    w("")
+    w("### Beside MuJoCo\n")
+    mj = {p["n"]: p for p in (peers or {}).get("piles", []) if p["integrator"] == "Euler"}
+    if not peers:
+        w("MuJoCo was not measured in this run (no `.venv-peers`): its columns say so.\n")
+    else:
+        w(f"{peers['engine']}, its default integrator (Euler) and contact parameters, on the same "
+          "cubes (`pile_<N>.json`, see *Beside MuJoCo* above): *at rest* is its third second, "
+          "each repeat from its state at 2 s (warm start included). Its penetration is the deepest "
+          "`-contact.dist` over the 3 s. The ratio is ours at rest over theirs at rest, from the "
+          "separate runs (the target is judged on the interleaved rounds below).\n")
+    w("| N | MuJoCo per simulated second, falling | MuJoCo at rest | ours (manifold), falling | ours at "
+      "rest | ratio at rest, ours/theirs | MuJoCo fastest body at 3 s | our fastest body at 3 s | "
+      "MuJoCo max penetration, 0–3 s | our max overlap, 0–3 s |")
+    w("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    nm = "not measured"
+    for n, m in manifold.items():
+        p = mj.get(n)
+        rest = p.get("rest_s_per_simulated_s") if p else None
+        w(f"| {n} | {fmt_s(p['s_per_simulated_s']) if p else nm} | {fmt_s(rest) if rest else nm} | "
+          f"{fmt_s(m['fall']['s_per_simulated_s'])} | {fmt_s(m['rest']['s_per_simulated_s'])} | "
+          f"{'**%.2f**' % (m['rest']['s_per_simulated_s'] / rest) if rest else nm} | "
+          f"{'%.3g m/s' % p['max_speed_3s'] if p and 'max_speed_3s' in p else nm} | "
+          f"{m['max_speed_3s_mps']:.3g} m/s | "
+          f"{'%.2f mm' % (p['max_penetration_3s_m'] * 1e3) if p and 'max_penetration_3s_m' in p else nm} | "
+          f"{m['max_overlap_state_m'] * 1e3:.2f} mm |")
+    w("")
+    if il:
+        w(f"**Interleaved, manifold pile of {il['n']} at rest.** Ours once (the whole 3 s run, "
+          "its third second timed), then MuJoCo's third second once, each in its own process, "
+          "round by round; our figures for this pile above are the medians over these rounds. "
+          f"Median ratio: **{il['ratio']:.2f}**" +
+          (", on which the target is judged.\n" if il["n"] == 1000 else
+           " (the full run times the pile of 1000 so, and judges the target on it).\n"))
+        w("| round | ours at rest, per simulated second | MuJoCo at rest, per simulated second | ratio |")
+        w("|---:|---:|---:|---:|")
+        for k, row in enumerate(il["rounds"], 1):
+            w(f"| {k} | {fmt_s(row['ours'])} | {fmt_s(row['mujoco'])} | {row['ratio']:.2f} |")
+        w("")
 
 
 def main():
@@ -641,6 +851,8 @@ def main():
         log("== a pile, ours and MuJoCo's interleaved")
         interleaved = interleaved_pile_ratio(build, scenes, folder, 100 if args.quick else 1000,
                                              1 if args.quick else 3)
+        log("== the manifold contact solver's piles (rigid-bench-core BM_PileManifold)")
+        manifold, manifold_il = run_manifold(build, scenes, folder, args.quick)
     if peers is None:
         log("MuJoCo: not measured (no .venv-peers; scripts/bench.sh without --quick creates it)")
     accuracy = {"T": T, "omega0": [float(x) for x in omega0], "ours": ours, "mujoco": [], "equal_accuracy": []}
@@ -650,20 +862,22 @@ def main():
         accuracy["equal_accuracy"] = equal_accuracy(ours, [m for m in peers["free_one"] if m["integrator"] == "RK4"])
 
     rows = targets(free, piles, peers, interleaved)
+    mrows = manifold_targets(manifold, peers, manifold_il)
     meta = {"quick": args.quick, "date": time.strftime("%Y-%m-%d %H:%M %Z"), "cpu": cpu_name(),
             "python": f"Python {platform.python_version()}", "repeats": repeats,
             "benchmark_library": f"1.7 ({context.get('library_build_type', '?')} build, Debian)",
             "load_avg": context.get("load_avg"), "source": source_state(),
             "seconds": time.perf_counter() - t_start}
     report = {"free": free, "piles": piles, "fmu": fmu, "peers": peers, "interleaved": interleaved,
+              "manifold": manifold, "manifold_interleaved": manifold_il, "manifold_targets": mrows,
               "accuracy": accuracy, "targets": rows, "meta": meta}
     fig_dir = out / "performance"
-    files = plots(fig_dir, free, piles, peers)
+    files = plots(fig_dir, free, piles, peers, manifold)
     (fig_dir / "bench.json").write_text(json.dumps(report, indent=1, default=float))
     write_markdown(out / "performance.md", report)
 
     log("\n== targets (figures, never asserted)")
-    for label, value, status in rows:
+    for label, value, status in rows + mrows:
         log(f"  {status:5s} {label}: {value}")
     if peers:
         mj = {m["n"]: m for m in peers["piles"] if m["integrator"] == "Euler"}
@@ -676,6 +890,26 @@ def main():
             log(f"  free body vs MuJoCo RK4 dt {m['dt']:g} ({m['error_rad']:.2g} rad): " +
                 (f"ours rk4 h {e['ours']['dt']:g} ({e['ours']['error_rad']:.2g} rad), ratio {e['ratio']:.3f}"
                  if e["ours"] else "no run of ours as accurate"))
+    log("\n== manifold solver's piles (BM_PileManifold; falling 0-1 s, at rest 2-3 s)")
+    mj_piles = {m["n"]: m for m in (peers or {}).get("piles", []) if m["integrator"] == "Euler"}
+    for n, m in manifold.items():
+        f, s = m["fall"], m["rest"]
+        p = mj_piles.get(n, {})
+        log(f"  pile {n}: per simulated second falling {fmt_s(f['s_per_simulated_s'])}, at rest "
+            f"{fmt_s(s['s_per_simulated_s'])} (MuJoCo Euler at rest: "
+            f"{fmt_s(p['rest_s_per_simulated_s']) if 'rest_s_per_simulated_s' in p else 'not measured'}); "
+            f"iterations per solve {f['iterations_per_solve']:.1f} falling, {s['iterations_per_solve']:.1f} "
+            f"at rest; fastest body at 3 s {m['max_speed_3s_mps']:.3g} m/s (MuJoCo: "
+            f"{'%.3g m/s' % p['max_speed_3s'] if 'max_speed_3s' in p else 'not measured'}); overlap "
+            f"{m['max_overlap_state_m'] * 1e3:.2f} mm (0-3 s), {m['max_overlap_rest_m'] * 1e3:.2f} mm at rest")
+        for wnd, name in (("fall", "falling"), ("rest", "at rest")):
+            log(f"    shares {name}: " + ", ".join(f"{k} {pct(m[wnd]['shares'][k])}"
+                                                    for k in STAGES + ("other",)))
+    if manifold_il:
+        log(f"  manifold pile {manifold_il['n']} at rest: ours/MuJoCo Euler at rest = {manifold_il['ratio']:.2f} "
+            f"(median of {len(manifold_il['rounds'])} interleaved rounds)")
+    if peers is None:
+        log("  MuJoCo: not measured (no .venv-peers): its columns say \"not measured\"")
     log(f"wrote {out / 'performance.md'}, {', '.join(str(f) for f in files)} "
         f"({time.perf_counter() - t_start:.0f} s)")
     return 0

@@ -5,18 +5,24 @@ the peers' own venv (.venv-peers, made by scripts/peers_venv.sh) and read back a
   friction and start poses, a floor plane at the surface's top face, the scene's step
   2 ms), stepped 1 simulated second with MuJoCo's default Euler integrator (and RK4 where
   cheap): CPU time per step (median of the repeats, mj_step with nstep so that no Python
-  runs between steps), and, in a separate untimed run, the deepest penetration
-  (max over steps and contacts of -contact.dist).
+  runs between steps), and, in a separate untimed run of 3 s, the deepest penetration
+  (max over the first second's steps and contacts of -contact.dist; over all 3 s too)
+  and the fastest body's speed at 1 s and at 3 s. With Euler, also the CPU time of the
+  third second (from the state at 2 s, at rest), beside our manifold solver's pile at
+  rest (bench_core.cpp's BM_PileManifold times the same window).
 - Free bodies: the free_<N>.json bodies (inertia diag(1, 2, 3), no gravity) with RK4 at
   the scene's step, CPU time per step for N = 1 .. 1000; and the first body alone with
   RK4 (and Euler) at the given steps for T seconds, its final orientation returned so
   that bench.py measures its error against the same reference as ours.
 
 - With --pile-timing N: only the CPU time of one simulated second of pile_<N> (Euler,
-  one repeat), for bench.py's interleaved ratio (ours and MuJoCo's, round by round).
+  one repeat), for bench.py's interleaved ratio (ours and MuJoCo's, round by round);
+  with --at-rest too, of the third second (after 2 s untimed).
 
-usage: bench_peers.py SCENES_DIR OUT.json [--quick] [--T 10] [--dts 1e-2,1e-3] [--pile-timing N]"""
+usage: bench_peers.py SCENES_DIR OUT.json [--quick] [--T 10] [--dts 1e-2,1e-3]
+                      [--pile-timing N [--at-rest]]"""
 import argparse
+import copy
 import json
 import pathlib
 import statistics
@@ -107,25 +113,61 @@ def cpu_per_step(model, start, steps, repeats):
     return statistics.median(times)
 
 
+def fastest(data):
+    """The fastest body's speed (m/s): how settled the pile is. A free joint's first
+    three velocities are the body's linear velocity in the world frame."""
+    return float(np.max(np.linalg.norm(data.qvel.reshape(-1, 6)[:, :3], axis=1)))
+
+
+def settled(model, seconds):
+    """The pile's state after `seconds` of simulated time from the start (untimed)."""
+    data = mujoco.MjData(model)
+    mujoco.mj_step(model, data, nstep=round(seconds / model.opt.timestep))
+    return data
+
+
+def from_state(model, state):
+    """A fresh MjData holding a copy of `state` (its warm start too), for repeats that
+    all start where the pile was at that instant, as our benchmark's third second does."""
+    data = mujoco.MjData(model)
+    mujoco.mj_copyData(data, model, state)
+    return data
+
+
 def pile(scene, integrator, repeats):
     model = mujoco.MjModel.from_xml_string(pile_xml(scene, integrator))
     dt = model.opt.timestep
     steps = round(1.0 / dt)
-    # untimed: penetration after every step (what our benchmark records too)
+    # untimed: penetration after every step (what our benchmark records too), for 3 s
+    # so that the pile's speed at rest compares with our manifold solver's at 3 s
     data = mujoco.MjData(model)
-    deepest, contacts, warnings = 0.0, 0, 0
-    for _ in range(steps):
+    deepest, deepest3, contacts, warnings = 0.0, 0.0, 0, 0
+    speed_1s, at_2s = None, None
+    for k in range(3 * steps):
         mujoco.mj_step(model, data)
         if data.ncon:
-            deepest = max(deepest, float(-np.min(data.contact.dist[:data.ncon])))
+            depth = float(-np.min(data.contact.dist[:data.ncon]))
+            deepest3 = max(deepest3, depth)
+            if k < steps:
+                deepest = max(deepest, depth)
             contacts = max(contacts, int(data.ncon))
+        if k + 1 == steps:
+            speed_1s = fastest(data)
+        if k + 1 == 2 * steps:
+            at_2s = copy.copy(data)
     warnings = int(sum(w.number for w in data.warning))
     per_step = cpu_per_step(model, lambda: mujoco.MjData(model), steps, repeats)
-    return {"n": len(scene["bodies"]), "integrator": integrator, "dt": dt, "steps": steps,
-            "us_per_step": per_step * 1e6, "s_per_simulated_s": per_step / dt,
-            "max_penetration_m": deepest, "max_contacts": contacts, "warnings": warnings,
-            # how settled the pile is at 1 s: the fastest body's speed (m/s)
-            "max_speed_end": float(np.max(np.linalg.norm(data.qvel.reshape(-1, 6)[:, :3], axis=1)))}
+    out = {"n": len(scene["bodies"]), "integrator": integrator, "dt": dt, "steps": steps,
+           "us_per_step": per_step * 1e6, "s_per_simulated_s": per_step / dt,
+           "max_penetration_m": deepest, "max_penetration_3s_m": deepest3,
+           "max_contacts": contacts, "warnings": warnings,
+           # how settled the pile is at 1 s and at 3 s: the fastest body's speed (m/s)
+           "max_speed_end": speed_1s, "max_speed_3s": fastest(data)}
+    if integrator == "Euler":
+        # their default at rest: the third second, every repeat from the state at 2 s
+        rest = cpu_per_step(model, lambda: from_state(model, at_2s), steps, repeats)
+        out.update(rest_us_per_step=rest * 1e6, rest_s_per_simulated_s=rest / dt)
+    return out
 
 
 def free_many(scene, dt, repeats):
@@ -165,13 +207,18 @@ def main():
     p.add_argument("--T", type=float, default=10.0)
     p.add_argument("--dts", default="1e-2,1e-3")
     p.add_argument("--pile-timing", type=int, help="time pile_<N> once and write only that")
+    p.add_argument("--at-rest", action="store_true", help="with --pile-timing: time the third second")
     args = p.parse_args()
     d = pathlib.Path(args.scenes)
     load = lambda name: json.loads((d / name).read_text())  # noqa: E731
     if args.pile_timing:
         model = mujoco.MjModel.from_xml_string(pile_xml(load(f"pile_{args.pile_timing}.json"), "Euler"))
-        per_step = cpu_per_step(model, lambda: mujoco.MjData(model), round(1.0 / model.opt.timestep), 1)
-        pathlib.Path(args.out).write_text(json.dumps({"n": args.pile_timing,
+        start = lambda: mujoco.MjData(model)  # noqa: E731
+        if args.at_rest:
+            at_2s = settled(model, 2.0)
+            start = lambda: from_state(model, at_2s)  # noqa: E731
+        per_step = cpu_per_step(model, start, round(1.0 / model.opt.timestep), 1)
+        pathlib.Path(args.out).write_text(json.dumps({"n": args.pile_timing, "at_rest": args.at_rest,
                                                       "s_per_simulated_s": per_step / model.opt.timestep}))
         return
     repeats = 3 if args.quick else 5
@@ -188,7 +235,10 @@ def main():
             r = pile(scene, integrator, min(repeats, 3) if n >= 1000 else repeats)
             out["piles"].append(r)
             print(f"MuJoCo pile {n:5d} {integrator:5s}: {r['us_per_step']:9.1f} us/step, "
-                  f"penetration {r['max_penetration_m'] * 1e3:.2f} mm", flush=True)
+                  f"penetration {r['max_penetration_m'] * 1e3:.2f} mm, fastest body at 3 s "
+                  f"{r['max_speed_3s']:.3g} m/s" +
+                  (f", at rest {r['rest_us_per_step']:.1f} us/step" if "rest_us_per_step" in r else ""),
+                  flush=True)
     for n in free_counts:
         scene = load(f"free_{n}.json")
         r = free_many(scene, scene["solver"]["step"], repeats)

@@ -1,8 +1,11 @@
 """The benchmark scenes, written once as scene files so that our core benchmark
 (bench/bench_core.cpp), the FMU benchmark and MuJoCo (scripts/bench_peers.py) run the
-very same bodies: free tumbling bodies, and piles of cubes falling on a floor.
+very same bodies: free tumbling bodies, and piles of cubes falling on a floor. The
+piles are written twice: with the default contact model (centroid) and with the
+manifold solver, same bodies and floor, so that old and new are timed side by side.
 
-  bench_scenes.py DIR      writes DIR/free_<N>.json and DIR/pile_<N>.json
+  bench_scenes.py DIR      writes DIR/free_<N>.json, DIR/pile_<N>.json and
+                           DIR/pile_manifold_<N>.json
 """
 import json
 import math
@@ -69,6 +72,15 @@ def pile_scene(n):
                           "staticFriction": 0.6, "kineticFriction": 0.6, "restitution": 0.0}]}
 
 
+def pile_manifold_scene(n):
+    """pile_scene(n) answered by the manifold contact solver (solver.contacts): only the
+    solver differs, so the two piles' figures compare the solvers and nothing else."""
+    scene = pile_scene(n)
+    scene["name"] = f"PileManifold{n}"
+    scene["solver"] = dict(scene["solver"], contacts="manifold")
+    return scene
+
+
 def write(directory):
     d = pathlib.Path(directory)
     d.mkdir(parents=True, exist_ok=True)
@@ -76,6 +88,7 @@ def write(directory):
         (d / f"free_{n}.json").write_text(json.dumps(free_scene(n)))
     for n in PILE_COUNTS:
         (d / f"pile_{n}.json").write_text(json.dumps(pile_scene(n)))
+        (d / f"pile_manifold_{n}.json").write_text(json.dumps(pile_manifold_scene(n)))
 
 
 if __name__ == "__main__":

@@ -1,7 +1,7 @@
 """scripts/bench.sh --quick: the performance report runs and is complete (every method
-and body count, the pile phases, the FMU costs, MuJoCo's ratios when its venv is there,
-the plots). Times are figures: none is asserted, only that each is measured (finite and
-positive)."""
+and body count, the pile phases, the manifold solver's piles falling and at rest, the
+FMU costs, MuJoCo's ratios when its venv is there, the plots). Times are figures: none
+is asserted, only that each is measured (finite and positive)."""
 import json
 import math
 import os
@@ -15,6 +15,7 @@ METHODS = ("euler", "rk4", "symplecticEuler", "splitting", "lieRk4", "dopri5", "
 FREE_N = (1, 10, 100, 1000)  # quick mode: no 10000
 PILE_N = (10, 100)           # quick mode: no pile of 1000
 PHASES = ("broadphase", "narrowphase", "response", "integration")
+WINDOWS = ("fall", "rest")   # BM_PileManifold: 0-1 s and 2-3 s
 HAVE_PEERS = (ROOT / ".venv-peers" / "bin" / "python").exists()
 
 
@@ -52,6 +53,31 @@ def test_core_piles_split_into_phases(quick):
         assert p["steps_ok"] == p["steps"], f"pile {n}: a step failed"
         assert math.isfinite(p["max_penetration_m"]) and p["max_penetration_m"] >= 0
         assert math.isfinite(p["max_overlap_state_m"]) and p["max_overlap_state_m"] >= 0
+
+
+def test_manifold_piles_falling_and_at_rest(quick):
+    _, _, r = quick
+    for n in PILE_N:
+        m = r["manifold"][str(n)]
+        assert m["steps_ok"] == m["steps"], f"manifold pile {n}: a step failed"
+        for w in WINDOWS:
+            x = m[w]
+            assert measured(x["s_per_simulated_s"]) and measured(x["us_per_step"]), (n, w)
+            # a pile's cubes touch in both windows, so the solver ran (how many iterations
+            # it took is a figure: a settled pile may skip most of them)
+            assert x["solves_per_step"] > 0, (n, w)
+            assert math.isfinite(x["iterations_per_solve"]) and x["iterations_per_solve"] >= 0, (n, w)
+            shares = x["shares"]
+            for k in PHASES:
+                assert math.isfinite(shares[k]) and shares[k] >= 0, (n, w, k)
+            assert math.isclose(sum(shares[k] for k in PHASES) + shares["other"], 1.0, rel_tol=1e-9)
+        for key in ("max_overlap_state_m", "max_overlap_rest_m", "max_speed_1s_mps", "max_speed_3s_mps"):
+            assert math.isfinite(m[key]) and m[key] >= 0, (n, key)
+        assert m["max_overlap_rest_m"] <= m["max_overlap_state_m"]
+    labels = [row[0] for row in r["manifold_targets"]]
+    assert any("at rest (2–3 s)" in x and "MuJoCo" in x for x in labels)
+    assert any("penetration ≤ 1 mm" in x for x in labels)
+    assert any(x.startswith("manifold at rest: growth") for x in labels)
 
 
 def test_fmu_costs_and_overhead(quick):
@@ -95,6 +121,17 @@ def test_mujoco_side_by_side(quick):
     for row in il["rounds"]:
         assert measured(row["ours"]) and measured(row["mujoco"])
         assert math.isclose(row["ratio"], row["ours"] / row["mujoco"], rel_tol=1e-12)
+    # the manifold solver's piles beside MuJoCo's: its third second and fastest body at
+    # 3 s, and the interleaved rounds at rest (quick: one round of the pile of 100)
+    for n in PILE_N:
+        (p,) = [p for p in peers["piles"] if p["n"] == n and p["integrator"] == "Euler"]
+        assert measured(p["rest_s_per_simulated_s"])
+        assert math.isfinite(p["max_speed_3s"]) and p["max_speed_3s"] >= 0
+    mil = r["manifold_interleaved"]
+    assert mil and mil["n"] == 100 and len(mil["rounds"]) == 1
+    for row in mil["rounds"]:
+        assert measured(row["ours"]) and measured(row["mujoco"])
+        assert math.isclose(row["ratio"], row["ours"] / row["mujoco"], rel_tol=1e-12)
     eq = r["accuracy"]["equal_accuracy"]
     assert eq and any(e["ratio"] is not None for e in eq)
     for e in eq:
@@ -105,12 +142,27 @@ def test_markdown_and_plots(quick):
     proc, out, r = quick
     text = (out / "performance.md").read_text()
     for section in ("## Targets", "## Core: free bodies", "## Core: piles of cubes",
-                    "## Through FMI", "## Beside MuJoCo", "## How it is measured"):
+                    "## Through FMI", "## Beside MuJoCo", "## Manifold contact solver", "## How it is measured"):
         assert section in text
+    # the manifold section: its targets, a row per pile, the stages falling and at rest,
+    # and its MuJoCo table (with "not measured" where MuJoCo was not)
+    manifold = text[text.index("## Manifold contact solver"):text.index("## How it is measured")]
+    for heading in ("iterations per solve, at rest", "fastest body at 3 s", "| N | window |",
+                    "### Beside MuJoCo", "MuJoCo fastest body at 3 s", "ratio at rest, ours/theirs"):
+        assert heading in manifold, heading
+    for n in PILE_N:
+        assert f"| {n} | falling, 0–1 s |" in manifold and f"| {n} | at rest, 2–3 s |" in manifold
+    for label, _, _ in r["manifold_targets"]:
+        assert f"| {label} |" in manifold
+    if HAVE_PEERS:
+        assert "**Interleaved, manifold pile of 100 at rest.**" in manifold
+    else:
+        assert "not measured" in manifold
+    assert "manifold solver's piles (BM_PileManifold" in proc.stdout
     for m in METHODS:
         assert f"| `{m}` |" in text
     assert "targets (figures, never asserted)" in proc.stdout
-    statuses = [row[2] for row in r["targets"]]
+    statuses = [row[2] for row in r["targets"] + r["manifold_targets"]]
     assert statuses and set(statuses) <= {"PASS", "MISS", "–"}
     if HAVE_PEERS:
         assert "ratio ours/theirs" in text

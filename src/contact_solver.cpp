@@ -385,8 +385,6 @@ double solveFriction(Solver& s, Row& r, std::vector<BodyState>& Y) {
   return std::max(std::abs(d1) / r.t1.mass, std::abs(d2) / r.t2.mass);
 }
 
-// Gauss-Seidel passes over the rows until no impulse changes a velocity by more than
-// the tolerance, or the cap.
 // One row: normal, then friction with the new normal impulse. A row whose bodies took
 // no impulse worth noting since it was found settled is settled still, and skipped: a
 // pile converges where it moves, not everywhere. Returns the velocity change it made.
@@ -463,10 +461,10 @@ void solvePseudoVelocities(Solver& s, double h, double share) {
 // The positions: the pseudo-velocities' move, and the move of the solve's impulses
 // taken as a constant force over the step (`share` of h times the velocity change they
 // made: h/2 for the methods exact on a constant force, as the integrator would move a
-// body under one). The integrator moved every
-// body by the step's applied forces alone: a body resting on the floor sank g h^2 / 2
-// and a box held by static friction on a ramp slid g sin(theta) h^2 / 2; the solve's
-// move takes both back, so that what contact holds does not creep.
+// body under one). The integrator moved every body by the step's applied forces alone:
+// a body resting on the floor sank g h^2 / 2 and a box held by static friction on a
+// ramp slid g sin(theta) h^2 / 2; the solve's move takes both back, so that what
+// contact holds does not creep.
 void correctPositions(Solver& s, double h, double share, std::vector<BodyState>& Y) {
   solvePseudoVelocities(s, h, share);
   for (size_t i = 0; i + 1 < s.bodies.size(); ++i) {

@@ -422,6 +422,7 @@ struct CollisionDetector::Impl {
   int nBodySlots = 0;                 // slots [0, nBodySlots): colliding bodies; then surfaces
   std::vector<int> slotIndex;         // slot -> body or surface index
   std::vector<int> bodySlot;          // body index -> slot, -1 when it does not collide
+  std::vector<char> meetsBodies;      // per body slot: pairs with other bodies too, not only surfaces
   std::vector<Geo> geo;               // per slot
   std::vector<Vec3> surfaceHalfAabb;  // per surface: half extents of its world AABB
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;  // per slot
@@ -453,6 +454,7 @@ struct CollisionDetector::Impl {
   // The candidate pair of two slots whose boxes overlap; false for two surfaces.
   bool candidate(int s1, int s2, Pair& p) const {
     if (!isBody(s1) && !isBody(s2)) return false;
+    if (isBody(s1) && isBody(s2) && !(meetsBodies[s1] && meetsBodies[s2])) return false;
     if (!isBody(s1) || (isBody(s2) && slotIndex[s2] < slotIndex[s1])) std::swap(s1, s2);
     p = Pair{slotIndex[s1], -1, -1, s1, s2};
     if (isBody(s2)) p.b = slotIndex[s2];
@@ -469,15 +471,21 @@ struct CollisionDetector::Impl {
   void appendWithinMargin(const Pair& pr, double margin, const Contact& proto, std::vector<Contact>& out);
 };
 
-CollisionDetector::CollisionDetector(const WorldModel& model, const std::vector<bool>& collides)
+CollisionDetector::CollisionDetector(const WorldModel& model, const std::vector<bool>& collides,
+                                     const std::vector<bool>& meetsSurfaces)
     : impl_(std::make_unique<Impl>()) {
   if (collides.size() != model.bodies.size())
     throw std::invalid_argument("CollisionDetector: collides has " + std::to_string(collides.size()) +
                                 " entries for " + std::to_string(model.bodies.size()) + " bodies");
+  if (!meetsSurfaces.empty() && meetsSurfaces.size() != model.bodies.size())
+    throw std::invalid_argument("CollisionDetector: meetsSurfaces has " + std::to_string(meetsSurfaces.size()) +
+                                " entries for " + std::to_string(model.bodies.size()) + " bodies");
   Impl& d = *impl_;
   d.bodySlot.assign(model.bodies.size(), -1);
   for (size_t i = 0; i < model.bodies.size(); ++i) {
-    if (!collides[i]) continue;
+    const bool onSurfaces = !meetsSurfaces.empty() && meetsSurfaces[i];
+    if (!collides[i] && !onSurfaces) continue;
+    d.meetsBodies.push_back(collides[i]);
     const Shape& s = model.bodies[i].shape;
     Geo g;
     g.type = s.type;

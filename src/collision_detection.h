@@ -35,9 +35,12 @@ struct Contact {
 // side in threads.
 class CollisionDetector {
  public:
-  // `collides[i]` false: body i takes no part (scene switch). Surfaces always take
-  // part. `collides` must have one entry per body (std::invalid_argument otherwise).
-  CollisionDetector(const WorldModel& model, const std::vector<bool>& collides);
+  // `collides[i]` false: body i takes no part (scene switch), unless
+  // `meetsSurfaces[i]`: then it meets surfaces but no other body. Surfaces always
+  // take part. `collides` and a non-empty `meetsSurfaces` must have one entry per
+  // body (std::invalid_argument otherwise).
+  CollisionDetector(const WorldModel& model, const std::vector<bool>& collides,
+                    const std::vector<bool>& meetsSurfaces = {});
   ~CollisionDetector();
   CollisionDetector(CollisionDetector&&) noexcept;
   CollisionDetector& operator=(CollisionDetector&&) noexcept;

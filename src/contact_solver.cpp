@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <tuple>
+
+#include <Eigen/Dense>
 
 #include "surface_contact.h"  // combineCoefficients
 
@@ -74,6 +77,10 @@ struct ContactScratch {
   std::vector<Row> impacts;        // answerImpacts' merged pairs
   std::vector<size_t> deep;        // rows overlapping by more than the slop
   std::vector<char> used;          // warmStart: memory points already matched
+  std::vector<int> island;         // solveIslandNormals: each body's island (union-find parents)
+  std::vector<size_t> islandRows;  // solveIslandNormals: rows grouped by island
+  std::vector<size_t> block;       // solveIslandNormals: one island's rows
+  std::vector<size_t> active;      // solveBlock: the rows whose normal impulse is solved
   int staticSlot() const { return static_cast<int>(bodies.size()) - 1; }
 };
 
@@ -401,6 +408,98 @@ double solveRow(Solver& s, Row& r, std::vector<BodyState>& Y) {
   return change;
 }
 
+// ---- normal block ----------------------------------------------------------------
+
+// Normal velocity at row i per unit normal impulse at row j: the Delassus matrix's
+// entry, from the bodies the two rows share.
+double delassus(const Solver& s, const Row& i, const Row& j) {
+  auto response = [&](int body, double sideI, const Vec3& armI) {
+    // the velocity of `body` along row i's normal (sideI: +1 on b's side, -1 on a's)
+    // per unit impulse of row j
+    double sum = 0.0;
+    const SolverBody& X = s.bodies[body];
+    if (j.a == body) sum -= X.invMass * i.n.d.dot(j.n.d) + armI.dot(j.n.spinA);
+    if (j.b == body) sum += X.invMass * i.n.d.dot(j.n.d) + armI.dot(j.n.spinB);
+    return sideI * sum;
+  };
+  double k = response(i.a, -1.0, i.n.raXd);
+  if (i.b != s.staticSlot()) k += response(i.b, 1.0, i.n.rbXd);
+  return k;
+}
+
+// The normal impulses of `rows` solved together: lambda_n >= 0 with v_n = target
+// wherever lambda_n > 0 (an active set: rows that would pull are dropped and the rest
+// solved again), the friction impulses held. A face's four points have one redundant
+// normal, so the matrix is made regular by 1e-9 of its diagonal: the least-norm
+// impulses, the load shared evenly.
+void solveBlock(Solver& s, const std::vector<size_t>& rows, std::vector<BodyState>& Y) {
+  std::vector<size_t>& active = s.active;
+  active.clear();
+  for (size_t i : rows) {
+    const Row& r = s.rows[i];
+    if (r.lambdaN > 0.0 || relativeVelocity(s, r, r.n) < r.target) active.push_back(i);
+  }
+  constexpr int kMaxRounds = 8;
+  for (int round = 0; round < kMaxRounds && !active.empty(); ++round) {
+    const Eigen::Index n = static_cast<Eigen::Index>(active.size());
+    Eigen::MatrixXd K(n, n);
+    Eigen::VectorXd residual(n);
+    for (Eigen::Index p = 0; p < n; ++p) {
+      const Row& r = s.rows[active[p]];
+      residual(p) = relativeVelocity(s, r, r.n) - r.target;
+      for (Eigen::Index q = 0; q <= p; ++q) K(p, q) = K(q, p) = delassus(s, r, s.rows[active[q]]);
+    }
+    K.diagonal() *= 1.0 + 1e-9;
+    const Eigen::VectorXd delta = K.ldlt().solve(-residual);
+    if (!delta.allFinite()) return;
+    bool dropped = false;
+    for (Eigen::Index p = 0; p < n; ++p) {
+      Row& r = s.rows[active[p]];
+      const double total = std::max(r.lambdaN + delta(p), 0.0);
+      dropped = dropped || total == 0.0;
+      applyImpulse(s, r, r.n, total - r.lambdaN, Y);
+      r.lambdaN = total;
+    }
+    if (!dropped) return;
+    active.erase(std::remove_if(active.begin(), active.end(), [&](size_t i) { return s.rows[i].lambdaN == 0.0; }),
+                 active.end());
+  }
+}
+
+int islandOf(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+// Every island of at most kMaxBlockRows rows has its normal impulses solved at once
+// (solveBlock). Its bodies' versions change, so that its rows are solved again.
+void solveIslandNormals(Solver& s, std::vector<BodyState>& Y) {
+  const int statics = s.staticSlot();
+  std::vector<int>& parent = s.island;
+  parent.resize(s.bodies.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const Row& r : s.rows)
+    if (r.b != statics) parent[islandOf(parent, r.a)] = islandOf(parent, r.b);
+  std::vector<size_t>& order = s.islandRows;
+  order.resize(s.rows.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  auto islandOfRow = [&](size_t i) { return islandOf(parent, s.rows[i].a); };
+  std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return islandOfRow(x) < islandOfRow(y); });
+  std::vector<size_t>& rows = s.block;
+  for (size_t begin = 0; begin < order.size();) {
+    size_t end = begin;
+    while (end < order.size() && islandOfRow(order[end]) == islandOfRow(order[begin])) ++end;
+    if (end - begin <= static_cast<size_t>(kMaxBlockRows)) {
+      rows.assign(order.begin() + begin, order.begin() + end);
+      solveBlock(s, rows, Y);
+      for (size_t i : rows) ++s.bodies[s.rows[i].a].version, ++s.bodies[s.rows[i].b].version;
+    }
+    begin = end;
+  }
+}
+
+// ---- velocities, iterated ---------------------------------------------------------
+
 // Gauss-Seidel passes over the rows until no impulse changes a velocity by more than
 // the tolerance, or the cap. The passes sweep forwards and backwards in turn
 // (symmetric Gauss-Seidel): sweeps in one order only let a tall column of cubes rock,
@@ -414,6 +513,7 @@ void solveVelocities(Solver& s, std::vector<BodyState>& Y, ContactSolveReport& r
     ++report.iterations;
     report.residual = change;
     if (change <= kVelocityTolerance) break;
+    if (report.iterations >= kBlockAfter) solveIslandNormals(s, Y);
   }
 }
 

@@ -10,7 +10,10 @@ unsigned modulesNeeded(const WorldModel& model) {
   if (!model.media.empty()) m |= kModuleMedia;
   int colliding = 0;
   for (const BodyConstants& b : model.bodies) colliding += b.collides ? 1 : 0;
-  // FCL answers body-body contacts and bodies against the sides of surfaces.
+  // FCL answers body-body contacts and, with the manifold solver, every body on a
+  // surface (the first model: colliding bodies against the sides of surfaces).
+  const bool manifold = model.contactSolver == ContactSolver::Manifold;
+  if (manifold && !model.surfaces.empty()) colliding = static_cast<int>(model.bodies.size());
   if (colliding >= 2 || (colliding >= 1 && !model.surfaces.empty()))
     m |= kModuleCollisions | kModuleSurfaces;
   return m;

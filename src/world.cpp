@@ -26,6 +26,10 @@ unsigned modulesBuilt() {
          (RIGID_WITH_COLLISIONS ? kModuleCollisions : 0u);
 }
 
+namespace {
+bool manifold(const WorldModel& model) { return model.contactSolver == ContactSolver::Manifold; }
+}  // namespace
+
 WorldData initialData(const WorldModel& model) {
   const size_t n = model.bodies.size();
   WorldData d;
@@ -36,17 +40,22 @@ WorldData initialData(const WorldModel& model) {
   d.aux.resize(n);
   d.contacts.assign(n, 0);
 #if RIGID_WITH_COLLISIONS
-  std::vector<bool> collides;
-  for (const BodyConstants& body : model.bodies) collides.push_back(body.collides);
-  // FCL answers body-body contacts and bodies against the sides and undersides of
-  // surfaces; on a surface's top face the surface module answers (exact support and
-  // friction), and FCL's contacts there are left out (resolveContacts).
+  std::vector<bool> collides, meetsSurfaces;
+  for (const BodyConstants& body : model.bodies) {
+    collides.push_back(body.collides);
+    // The manifold solver answers surfaces as static boxes: a body that takes no part
+    // in collisions ("collision": false) still rests on them.
+    meetsSurfaces.push_back(body.collides || (manifold(model) && !model.surfaces.empty()));
+  }
   const long colliding = std::count(collides.begin(), collides.end(), true);
-  if (colliding >= 2 || (colliding >= 1 && !model.surfaces.empty())) {
-    d.collision = std::make_shared<CollisionCache>(CollisionCache{CollisionDetector(model, collides), {}, {}, {}, {}, {}});
-    for (const BodyConstants& body : model.bodies) {
-      d.collision->halfThickness.push_back(body.collides ? halfThickness(body.shape) : 0.0);
-      d.collision->boundingRadius.push_back(body.collides ? boundingRadius(body.shape) : 0.0);
+  const long onSurfaces = model.surfaces.empty() ? 0 : std::count(meetsSurfaces.begin(), meetsSurfaces.end(), true);
+  if (colliding >= 2 || onSurfaces >= 1) {
+    d.collision = std::make_shared<CollisionCache>(
+        CollisionCache{CollisionDetector(model, collides, meetsSurfaces), {}, {}, {}, {}, {}});
+    for (size_t i = 0; i < model.bodies.size(); ++i) {
+      const Shape& shape = model.bodies[i].shape;
+      d.collision->halfThickness.push_back(meetsSurfaces[i] ? halfThickness(shape) : 0.0);
+      d.collision->boundingRadius.push_back(meetsSurfaces[i] ? boundingRadius(shape) : 0.0);
     }
   }
 #endif
@@ -134,8 +143,6 @@ constexpr double kSpeculativeMargin = 4e-3;
 // correction may have closed the gap of a pair that was not detected (at least the
 // speculative margin), that pair may overlap.
 constexpr int kMaxSeparationRounds = 4;
-
-bool manifold(const WorldModel& model) { return model.contactSolver == ContactSolver::Manifold; }
 
 // The contacts of Y for the response, into the collision cache. The manifold solver
 // wants every point of a patch within the speculative margin (a box falling flat
@@ -255,8 +262,10 @@ int advance(const WorldModel& model, WorldData& data, double tau, std::vector<Bo
   // Only bouncing impacts are located (anyContactImpact) and restitutions combine by
   // geometric mean, so with no colliding body of xi > 0 (a pile of inelastic cubes)
   // there is nothing to detect here.
-  const bool bouncy = std::any_of(model.bodies.begin(), model.bodies.end(),
-                                  [](const BodyConstants& b) { return b.collides && b.restitution > 0.0; });
+  const bool onSurfaces = manifold(model) && !model.surfaces.empty();
+  const bool bouncy = std::any_of(model.bodies.begin(), model.bodies.end(), [&](const BodyConstants& b) {
+    return (b.collides || onSurfaces) && b.restitution > 0.0;
+  });
   if (CollisionCache* c = data.collision.get(); c && (bouncy || forResponse)) {
     if (forResponse)
       detectForResponse(model, data, Y);

@@ -18,12 +18,13 @@ struct CollisionCache;  // collision_response.h: the FCL detector and its contac
 
 // How contacts are answered (scene field solver.contacts).
 enum class ContactSolver {
-  // The first model: surfaces support and rub a body at its centre of mass in the
-  // force stage; a touching pair of bodies takes one impulse at its patch's centroid.
+  // The first model, kept beside the default until the manifold solver has replaced
+  // it everywhere: surfaces support and rub a body at its centre of mass in the force
+  // stage; a touching pair of bodies takes one impulse at its patch's centroid.
   Centroid,
-  // One pipeline for every pair, body-body and body-surface (a surface is a static
-  // box): manifolds of up to 4 points kept across steps, warm-started accumulated
-  // impulses with a friction cone, split-impulse position correction
+  // The default. One pipeline for every pair, body-body and body-surface (a surface
+  // is a static box): manifolds of up to 4 points kept across steps, warm-started
+  // accumulated impulses with a friction cone, split-impulse position correction
   // (contact_solver.h).
   Manifold,
 };

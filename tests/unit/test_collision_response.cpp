@@ -1,4 +1,5 @@
-// Collision response: the position correction leaves no overlap, neither with the
+// Collision response of the first contact model (ContactSolver::Centroid, chosen in
+// every world here): the position correction leaves no overlap, neither with the
 // partners it answered nor with neighbours its moves push a body into, against
 // positions worked out here (touching stacks: z_i = (i + 1/2) edge).
 #include <gtest/gtest.h>
@@ -62,6 +63,7 @@ double deepestOverlap(const rigid::WorldModel& m, const std::vector<rigid::BodyS
 // z_i = (i + 1/2) edge, with momenta untouched (positions only).
 TEST(CollisionResponse, LiftingABodyOutOfItsSupportPushesTheOneAboveIt) {
   rigid::WorldModel m;
+  m.contactSolver = rigid::ContactSolver::Centroid;
   m.surfaces = {floorSurface()};
   const double sunk = 0.003, gap = 0.001;
   const double z1 = 1.5 * kEdge - sunk;
@@ -85,6 +87,7 @@ TEST(CollisionResponse, LiftingABodyOutOfItsSupportPushesTheOneAboveIt) {
 // the column rests touching: its centre of mass at N edge / 2, every cube at rest.
 TEST(CollisionResponse, ColumnOfTenCubesLandsWithoutOverlapAndSettles) {
   rigid::WorldModel m;
+  m.contactSolver = rigid::ContactSolver::Centroid;
   m.surfaces = {floorSurface()};
   m.surfaces[0].staticFriction = m.surfaces[0].kineticFriction = 0.6;
   const int n = 10;
@@ -113,6 +116,7 @@ TEST(CollisionResponse, SpeculativeContactStopsAnInelasticApproachAtTheGap) {
   for (const double xi : {0.0, 0.5}) {
     SCOPED_TRACE(xi);
     rigid::WorldModel m;
+    m.contactSolver = rigid::ContactSolver::Centroid;
     m.gravity = Vec3::Zero();
     m.bodies = {cube(Vec3(0, 0, 0)), cube(Vec3(kEdge + gap, 0, 0))};
     for (rigid::BodyConstants& b : m.bodies) b.restitution = xi;
@@ -140,6 +144,7 @@ TEST(CollisionResponse, SpeculativeContactStopsAnInelasticApproachAtTheGap) {
 // too: no overlap deeper than the correction's residual is left after one step.
 TEST(CollisionResponse, ACorrectionBeyondTheReachDetectsAgain) {
   rigid::WorldModel m;
+  m.contactSolver = rigid::ContactSolver::Centroid;
   m.gravity = Vec3::Zero();
   m.surfaces = {floorSurface()};
   const double sunk = 0.006, gap = 0.005;
@@ -161,6 +166,7 @@ TEST(CollisionResponse, ACorrectionBeyondTheReachDetectsAgain) {
 // down by half of each overlap and a pile of 1000 took 50 correction passes a step.)
 TEST(CollisionResponse, ATowerOnABaseHoveringWithinTheReachIsLiftedFromItsBase) {
   rigid::WorldModel m;
+  m.contactSolver = rigid::ContactSolver::Centroid;
   m.gravity = Vec3(0, 0, -9.81);
   m.surfaces = {floorSurface()};
   const int n = 6;

@@ -281,6 +281,29 @@ TEST(ContactSolver, StaticFrictionHoldsATorqueBelowItsLimitAndNotAbove) {
   EXPECT_GT(yawAfterTorque(1.1 * limit), radians(5.0));
 }
 
+// A cube spinning about the vertical on the floor: kinetic friction at the four corner
+// points of its bottom face (a / sqrt 2 from the centre, m g / 4 each) brakes the spin
+// at the constant rate mu_k m g (a / sqrt 2) / I_zz, I_zz = m a^2 / 6, until it stops at
+// omega0 / rate; then static friction holds it, and it never slides.
+TEST(ContactSolver, SpinOnAFaceIsBrakedByKineticFrictionAtTheCornersAndStops) {
+  const double a = 0.2, muk = 0.3, omega0 = 5.0;
+  json cube = box("cube", Vec3::Constant(a), Vec3(0, 0, 0.5 * a), Quat::Identity(), 0.0, 0.5, muk);
+  cube["angularVelocity"] = {0.0, 0.0, omega0};
+  Sim sim(sceneOf(cube, floorSurface(0.5, muk)));
+  const double rate = muk * kG * (a / std::sqrt(2.0)) / (a * a / 6.0);  // rad/s^2
+  const double stopAt = omega0 / rate, h = sim.model.maxStep;
+  double t = 0.0, worst = 0.0;
+  sim.run(2.0 * stopAt, [&] {
+    t += h;
+    const double expected = std::max(0.0, omega0 - rate * t);
+    if (std::abs(t - stopAt) > 2.0 * h) worst = std::max(worst, std::abs(sim.data.aux[0].omega.z() - expected));
+    ASSERT_LT(sim.data.aux[0].V.norm(), 1e-4) << "t = " << t;
+  });
+  EXPECT_LT(worst, 1e-5 * omega0);
+  EXPECT_LT(std::abs(sim.data.aux[0].omega.z()), 1e-9);
+  EXPECT_LT(sim.data.Y[0].X.head<2>().norm(), 1e-6);
+}
+
 // A cube on a ramp with tan(theta) just below mu_s is held by static friction: it seats
 // in the first steps (by 1.4 um: the cold start's passes leave some slip this close to
 // the limit) and then does not creep, the solve's move taking back what the integrator
@@ -433,6 +456,39 @@ TEST(ContactSolver, WallOfTwentyBricksStands) {
       bodies.push_back(box("b" + std::to_string(k), Vec3(2 * kEdge, kEdge, kEdge),
                            Vec3((j - 1.5) * 2 * kEdge + (row % 2 ? 0.5 * kEdge : 0.0), 0, kEdge * (0.5 + row))));
   expectStands(bodies);
+}
+
+// A body with "collision": false takes no part in collisions with other bodies but
+// still rests on surfaces: dropped through a resting cube, it lands on the floor where
+// the cube stands (the two overlapping) at the face-down height.
+TEST(ContactSolver, ABodyOutOfCollisionsPassesThroughBodiesAndRestsOnSurfaces) {
+  json ghost = box("ghost", Vec3::Constant(kEdge), Vec3(0, 0, 0.5));
+  ghost["collision"] = false;
+  Sim sim(sceneOf(json::array({box("cube", Vec3::Constant(kEdge), Vec3(0, 0, 0.5 * kEdge)), ghost}),
+                  {floorSurface()}));
+  sim.run(1.0);
+  EXPECT_NEAR(sim.data.Y[1].X.z(), 0.5 * kEdge, 1e-4);  // within the slop
+  EXPECT_NEAR(sim.data.Y[0].X.z(), 0.5 * kEdge, 1e-4);
+  EXPECT_LT(sim.fastest(), 1e-3);
+}
+
+// Two cubes, the upper `ratio` times heavier than the lower or the other way round:
+// both stand, whatever the ratio up to 1e6 (the heavy-on-light case is the one that
+// Gauss-Seidel alone cannot answer: its island's normals are solved at once).
+void expectTwoMassesStand(double upper, double lower) {
+  json bodies = json::array({box("lower", Vec3::Constant(kEdge), Vec3(0, 0, 0.5 * kEdge)),
+                             box("upper", Vec3::Constant(kEdge), Vec3(0, 0, 1.5 * kEdge))});
+  bodies[0]["mass"] = lower;
+  bodies[1]["mass"] = upper;
+  expectStands(bodies);
+}
+
+TEST(ContactSolver, HeavyOnLightAndLightOnHeavyStandUpToAMassRatioOfAMillion) {
+  for (double ratio : {1e3, 1e6}) {
+    SCOPED_TRACE(ratio);
+    expectTwoMassesStand(ratio, 1.0);
+    expectTwoMassesStand(1.0, ratio);
+  }
 }
 
 // The benchmark's pile (scripts/bench_scenes.py): columns of 0.1 m cubes 2 cm apart on

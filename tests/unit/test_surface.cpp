@@ -204,10 +204,12 @@ TEST(Surface, SlidingThatReversesInAStepEndsAtRest) {
 // brakes the spin at the constant rate mu_k M g rho / I_zz, rho = 0.38260 a the mean
 // distance of a square's points from its centre ((sqrt 2 + asinh 1) / 6 a), I_zz =
 // M a^2 / 6; it stops at omega0 / rate (within a step) and stays stopped, without
-// sliding.
+// sliding. (The first contact model, whose surface friction acts over the patch;
+// the manifold solver's, at the patch's corners, is ContactSolver.SpinOnAFace....)
 TEST(Surface, SpinOnAFaceIsBrakedByFrictionOverThePatchAndStops) {
   const double edge = 0.2, m = 2.0, g = 9.81, omega0 = 5.0;
   rigid::WorldModel model;
+  model.contactSolver = rigid::ContactSolver::Centroid;
   model.gravity = Vec3(0, 0, -g);
   model.surfaces = {floorSurface()};
   rigid::BodyConstants b = cube(edge, m);

@@ -634,7 +634,10 @@ def stack_case(quick, top, bottom):
     def judge(tr, method):
         viol = []
         E = energy(tr, s)
-        gain, v = drift_check(E, E[0], scale, 1e-6, tr, one_sided=True)
+        # 1e-5 of (m1 + m2) g edge: 1 um of the heavier box's height. The contact solver
+        # stops at a velocity tolerance of 1e-5 m/s, so a resting box's height moves by up
+        # to ~1e-8 m a step; 1e-6 (0.1 um) was the first model's exact support.
+        gain, v = drift_check(E, E[0], scale, 1e-5, tr, one_sided=True)
         viol += v
         worst_pen, worst_drift = 0.0, 0.0
         for n, z0 in (("lower", e / 2), ("upper", 1.5 * e)):
@@ -658,7 +661,7 @@ def stack_case(quick, top, bottom):
                 f"stack {which}, mass ratio {ratio:.0e} (boxes of 0.1 m: {top:g} kg on {bottom:g} kg, on a floor), h = 1e-3 s, {T:g} s",
                 s, T, 0.01,
                 "no NaN/Inf; |q|−1 ≤ 1e-12; penetration ≤ 1 mm and drift ≤ 1 mm at every point; energy never above its start "
-                "(gain ≤ 1e-6 of (m1+m2) g·edge); speeds ≤ 1e-3 m/s at the end; error: worst drift and penetration",
+                "(gain ≤ 1e-5 of (m1+m2) g·edge: 1 µm of the heavier box); speeds ≤ 1e-3 m/s at the end; error: worst drift and penetration",
                 judge)
 
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <tuple>
 
@@ -27,7 +28,7 @@ struct SolverBody {
   Mat3 Iinv = Mat3::Zero();                  // 1/(kg m^2), world frame, at the end-of-step pose
   Vec3 v = Vec3::Zero(), w = Vec3::Zero();   // velocity and angular velocity
   Vec3 vp = Vec3::Zero(), wp = Vec3::Zero(); // pseudo-velocities of the position correction
-  Vec3 v0 = Vec3::Zero(), w0 = Vec3::Zero(); // velocities before the solve's impulses (after impacts)
+  Vec3 v0 = Vec3::Zero(), w0 = Vec3::Zero(); // velocities before the impacts and the solve's impulses
   unsigned version = 0;  // counts the impulses that changed its velocities by more than kNegligible
 };
 
@@ -60,6 +61,7 @@ struct Row {
   double pushOut = 0.0;  // m/s, the position correction's target normal pseudo-velocity
   unsigned versionA = 0, versionB = 0;  // the bodies' versions when the row was found settled
   bool settled = false;
+  bool held = false;     // solveBlock: its friction is not an unknown of the block
   bool sliding = false;  // friction limited by mu_k (else mu_s), for the whole solve
   bool remembered = false;  // matched to a point of last step
   Vec3 localA = Vec3::Zero();  // m, the point in body a's frame (matches last step's points)
@@ -76,11 +78,13 @@ struct ContactScratch {
   std::vector<Row> rows;
   std::vector<Row> impacts;        // answerImpacts' merged pairs
   std::vector<size_t> deep;        // rows overlapping by more than the slop
+  std::vector<double> moveScale;   // limitMoves: each body's share of the solve's move
   std::vector<char> used;          // warmStart: memory points already matched
-  std::vector<int> island;         // solveIslandNormals: each body's island (union-find parents)
-  std::vector<size_t> islandRows;  // solveIslandNormals: rows grouped by island
-  std::vector<size_t> block;       // solveIslandNormals: one island's rows
-  std::vector<size_t> active;      // solveBlock: the rows whose normal impulse is solved
+  std::vector<int> island;         // solveIslands: each body's island (union-find)
+  std::vector<size_t> islandRows;  // solveIslands: rows grouped by island
+  std::vector<size_t> block;       // solveIslands: one island's rows
+  std::vector<size_t> active;      // solveBlock: the rows whose impulses are solved
+  std::vector<std::pair<size_t, int>> unknowns;  // solveBlock: (row, axis) of each unknown
   int staticSlot() const { return static_cast<int>(bodies.size()) - 1; }
 };
 
@@ -279,8 +283,8 @@ int answerImpacts(Solver& s, const ContactStep& step, std::vector<BodyState>& Y)
 
 auto pairKey(int a, int b, int surface) { return std::make_tuple(a, b < 0 ? 1 : 0, b >= 0 ? b : surface); }
 
-// The velocities that the solve's impulses start from (correctPositions moves each body
-// by what they change).
+// The velocities that the impacts and the solve's impulses start from (correctPositions
+// moves each body by what they change, within limitMoves).
 void markVelocities(Solver& s) {
   for (SolverBody& b : s.bodies) b.v0 = b.v, b.w0 = b.w;
 }
@@ -410,59 +414,95 @@ double solveRow(Solver& s, Row& r, std::vector<BodyState>& Y) {
 
 // ---- normal block ----------------------------------------------------------------
 
-// Normal velocity at row i per unit normal impulse at row j: the Delassus matrix's
-// entry, from the bodies the two rows share.
-double delassus(const Solver& s, const Row& i, const Row& j) {
-  auto response = [&](int body, double sideI, const Vec3& armI) {
-    // the velocity of `body` along row i's normal (sideI: +1 on b's side, -1 on a's)
-    // per unit impulse of row j
-    double sum = 0.0;
+// Velocity of row i along its axis x per unit impulse of row j along its axis y: an
+// entry of the Delassus matrix, from the bodies the two rows share.
+double coupling(const Solver& s, const Row& i, const Axis& x, const Row& j, const Axis& y) {
+  auto response = [&](int body, double side, const Vec3& arm) {
+    // side: +1 where body is row i's b, -1 where it is its a; arm: r x d of that side
     const SolverBody& X = s.bodies[body];
-    if (j.a == body) sum -= X.invMass * i.n.d.dot(j.n.d) + armI.dot(j.n.spinA);
-    if (j.b == body) sum += X.invMass * i.n.d.dot(j.n.d) + armI.dot(j.n.spinB);
-    return sideI * sum;
+    double sum = 0.0;
+    if (j.a == body) sum -= X.invMass * x.d.dot(y.d) + arm.dot(y.spinA);
+    if (j.b == body) sum += X.invMass * x.d.dot(y.d) + arm.dot(y.spinB);
+    return side * sum;
   };
-  double k = response(i.a, -1.0, i.n.raXd);
-  if (i.b != s.staticSlot()) k += response(i.b, 1.0, i.n.rbXd);
+  double k = response(i.a, -1.0, x.raXd);
+  if (i.b != s.staticSlot()) k += response(i.b, 1.0, x.rbXd);
   return k;
 }
 
-// The normal impulses of `rows` solved together: lambda_n >= 0 with v_n = target
-// wherever lambda_n > 0 (an active set: rows that would pull are dropped and the rest
-// solved again), the friction impulses held. A face's four points have one redundant
-// normal, so the matrix is made regular by 1e-9 of its diagonal: the least-norm
-// impulses, the load shared evenly.
-void solveBlock(Solver& s, const std::vector<size_t>& rows, std::vector<BodyState>& Y) {
+// One unknown of a block: a row's impulse along one of its axes (0: normal, 1, 2: the
+// tangents).
+const Axis& axisNumber(const Row& r, int axis) { return axis == 0 ? r.n : axis == 1 ? r.t1 : r.t2; }
+double& impulseNumber(Row& r, int axis) { return axis == 0 ? r.lambdaN : axis == 1 ? r.lambdaT1 : r.lambdaT2; }
+
+// The impulses of `rows` solved together, exactly: lambda_n >= 0 with v_n = target
+// wherever lambda_n > 0 and, withFriction, the slip stopped at every sticking point
+// whose friction stays inside its disc (else the friction is held as it is). An active set: rows that would pull are dropped, points whose
+// friction would leave the disc are projected onto it and held there, and the rest is
+// solved again. Sliding points keep their kinetic friction as the passes made it. A
+// face's four points are redundant (one normal and one twist too many), so the matrix
+// is made regular by 1e-9 of its diagonal: near the least-norm impulses, the load
+// shared evenly.
+void solveBlock(Solver& s, const std::vector<size_t>& rows, bool withFriction, std::vector<BodyState>& Y) {
   std::vector<size_t>& active = s.active;
   active.clear();
   for (size_t i : rows) {
-    const Row& r = s.rows[i];
+    Row& r = s.rows[i];
+    r.held = r.sliding || !withFriction;
+    if (r.depth < -kTouching) continue;  // speculative: left to the passes
     if (r.lambdaN > 0.0 || relativeVelocity(s, r, r.n) < r.target) active.push_back(i);
   }
+  std::vector<std::pair<size_t, int>>& unknowns = s.unknowns;
   constexpr int kMaxRounds = 8;
-  for (int round = 0; round < kMaxRounds && !active.empty(); ++round) {
-    const Eigen::Index n = static_cast<Eigen::Index>(active.size());
+  for (int round = 0; round <= kMaxRounds && !active.empty(); ++round) {
+    if (round == kMaxRounds)  // not settled: the normals alone, with the friction as it is
+      for (size_t i : active) s.rows[i].held = true;
+    unknowns.clear();
+    for (size_t i : active)
+      for (int axis = 0; axis < (s.rows[i].held ? 1 : 3); ++axis) unknowns.emplace_back(i, axis);
+    const Eigen::Index n = static_cast<Eigen::Index>(unknowns.size());
     Eigen::MatrixXd K(n, n);
     Eigen::VectorXd residual(n);
     for (Eigen::Index p = 0; p < n; ++p) {
-      const Row& r = s.rows[active[p]];
-      residual(p) = relativeVelocity(s, r, r.n) - r.target;
-      for (Eigen::Index q = 0; q <= p; ++q) K(p, q) = K(q, p) = delassus(s, r, s.rows[active[q]]);
+      const Row& r = s.rows[unknowns[p].first];
+      const Axis& x = axisNumber(r, unknowns[p].second);
+      residual(p) = relativeVelocity(s, r, x) - (unknowns[p].second == 0 ? r.target : 0.0);
+      for (Eigen::Index q = 0; q <= p; ++q) {
+        const Row& o = s.rows[unknowns[q].first];
+        K(p, q) = K(q, p) = coupling(s, r, x, o, axisNumber(o, unknowns[q].second));
+      }
     }
-    K.diagonal() *= 1.0 + 1e-9;
-    const Eigen::VectorXd delta = K.ldlt().solve(-residual);
+    // regularised, then refined twice against the exact matrix: the regularisation's
+    // own error (1e-9 of a 1e6 kg box's load) would otherwise be left in the velocities
+    Eigen::MatrixXd regular = K;
+    regular.diagonal() *= 1.0 + 1e-9;
+    const Eigen::LDLT<Eigen::MatrixXd> factors(regular);
+    Eigen::VectorXd delta = factors.solve(-residual);
+    for (int refine = 0; refine < 2; ++refine) delta += factors.solve(-(residual + K * delta));
     if (!delta.allFinite()) return;
-    bool dropped = false;
     for (Eigen::Index p = 0; p < n; ++p) {
-      Row& r = s.rows[active[p]];
-      const double total = std::max(r.lambdaN + delta(p), 0.0);
-      dropped = dropped || total == 0.0;
-      applyImpulse(s, r, r.n, total - r.lambdaN, Y);
-      r.lambdaN = total;
+      Row& r = s.rows[unknowns[p].first];
+      const int axis = unknowns[p].second;
+      double& lambda = impulseNumber(r, axis);
+      const double total = axis == 0 ? std::max(lambda + delta(p), 0.0) : lambda + delta(p);
+      applyImpulse(s, r, axisNumber(r, axis), total - lambda, Y);
+      lambda = total;
     }
-    if (!dropped) return;
+    bool changed = false;
+    for (size_t i : active) {
+      Row& r = s.rows[i];
+      const double t = length(r.lambdaT1, r.lambdaT2), limit = frictionLimit(r);
+      if (t <= limit) continue;
+      const double scale = limit / t;
+      applyImpulse(s, r, r.t1, r.lambdaT1 * (scale - 1.0), Y);
+      applyImpulse(s, r, r.t2, r.lambdaT2 * (scale - 1.0), Y);
+      r.lambdaT1 *= scale, r.lambdaT2 *= scale;
+      r.held = changed = true;
+    }
+    const size_t before = active.size();
     active.erase(std::remove_if(active.begin(), active.end(), [&](size_t i) { return s.rows[i].lambdaN == 0.0; }),
                  active.end());
+    if (!changed && active.size() == before) return;
   }
 }
 
@@ -471,27 +511,47 @@ int islandOf(std::vector<int>& parent, int i) {
   return i;
 }
 
-// Every island of at most kMaxBlockRows rows has its normal impulses solved at once
-// (solveBlock). Its bodies' versions change, so that its rows are solved again.
-void solveIslandNormals(Solver& s, std::vector<BodyState>& Y) {
+// The ratio of the heaviest to the lightest body that the rows [begin, end) of `order`
+// touch (1 when they touch one body).
+double massRatio(const Solver& s, const std::vector<size_t>& order, size_t begin, size_t end) {
+  double lightest = 0.0, heaviest = std::numeric_limits<double>::infinity();  // in inverse masses
+  for (size_t k = begin; k < end; ++k) {
+    const Row& r = s.rows[order[k]];
+    for (int body : {r.a, r.b}) {
+      if (body == s.staticSlot()) continue;
+      lightest = std::max(lightest, s.bodies[body].invMass);
+      heaviest = std::min(heaviest, s.bodies[body].invMass);
+    }
+  }
+  return lightest / heaviest;
+}
+
+// Every island of at most kMaxBlockRows rows that the passes have not settled has its
+// normal impulses solved at once, and its friction too where its masses differ by
+// kBlockMassRatio or more (solveBlock). Its bodies' versions change, so that its rows
+// are solved again.
+void solveIslands(Solver& s, std::vector<BodyState>& Y) {
   const int statics = s.staticSlot();
+  std::vector<size_t>& order = s.islandRows;
+  order.resize(s.rows.size());
+  std::iota(order.begin(), order.end(), size_t{0});
   std::vector<int>& parent = s.island;
   parent.resize(s.bodies.size());
   std::iota(parent.begin(), parent.end(), 0);
   for (const Row& r : s.rows)
     if (r.b != statics) parent[islandOf(parent, r.a)] = islandOf(parent, r.b);
-  std::vector<size_t>& order = s.islandRows;
-  order.resize(s.rows.size());
-  std::iota(order.begin(), order.end(), size_t{0});
-  auto islandOfRow = [&](size_t i) { return islandOf(parent, s.rows[i].a); };
-  std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return islandOfRow(x) < islandOfRow(y); });
+  for (int& p : parent) p = islandOf(parent, p);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t x, size_t y) { return parent[s.rows[x].a] < parent[s.rows[y].a]; });
   std::vector<size_t>& rows = s.block;
   for (size_t begin = 0; begin < order.size();) {
     size_t end = begin;
-    while (end < order.size() && islandOfRow(order[end]) == islandOfRow(order[begin])) ++end;
-    if (end - begin <= static_cast<size_t>(kMaxBlockRows)) {
+    while (end < order.size() && parent[s.rows[order[end]].a] == parent[s.rows[order[begin]].a]) ++end;
+    const bool unsettled = std::any_of(order.begin() + begin, order.begin() + end,
+                                       [&](size_t i) { return !s.rows[i].settled; });
+    if (unsettled && end - begin <= static_cast<size_t>(kMaxBlockRows)) {
       rows.assign(order.begin() + begin, order.begin() + end);
-      solveBlock(s, rows, Y);
+      solveBlock(s, rows, massRatio(s, order, begin, end) >= kBlockMassRatio, Y);
       for (size_t i : rows) ++s.bodies[s.rows[i].a].version, ++s.bodies[s.rows[i].b].version;
     }
     begin = end;
@@ -513,7 +573,7 @@ void solveVelocities(Solver& s, std::vector<BodyState>& Y, ContactSolveReport& r
     ++report.iterations;
     report.residual = change;
     if (change <= kVelocityTolerance) break;
-    if (report.iterations >= kBlockAfter) solveIslandNormals(s, Y);
+    if (report.iterations >= kBlockAfter) solveIslands(s, Y);
   }
 }
 
@@ -531,7 +591,9 @@ void solvePseudoVelocities(Solver& s, double h, double share) {
     Row& r = s.rows[i];
     const SolverBody& A = s.bodies[r.a];
     const SolverBody& B = s.bodies[r.b];
-    const double solved = r.n.d.dot(B.v - B.v0 - A.v + A.v0) + r.n.rbXd.dot(B.w - B.w0) - r.n.raXd.dot(A.w - A.w0);
+    const double sa = s.moveScale[r.a], sb = s.moveScale[r.b];
+    const double solved = r.n.d.dot(sb * (B.v - B.v0) - sa * (A.v - A.v0)) + sb * r.n.rbXd.dot(B.w - B.w0) -
+                          sa * r.n.raXd.dot(A.w - A.w0);
     const double depth = r.depth - share * h * solved;
     if (depth <= kSlop) continue;
     r.pushOut = std::min(kBaumgarte * (depth - kSlop) / h, kMaxPushOut);
@@ -558,20 +620,46 @@ void solvePseudoVelocities(Solver& s, double h, double share) {
   }
 }
 
+// The share of the solve's move that each body takes (1: all of it). A ball landing at
+// 2 m/s is stopped by an impulse of 2 m/s m; taken as a force over the step, it would
+// lift the ball h/2 2 m/s above the floor, and every later step would keep it hovering
+// at g h^2 / 2. The impulse that stops an approach acts at the step's end: a point
+// whose normal velocity the solve changed by more than the step's forces can (more
+// than the resting speed) may be closed by the move but not opened beyond touching.
+// (Every point would be too strict: a resting body's move takes back its sinking at
+// all its points, and one point's limit would leave the others sunk.)
+void limitMoves(Solver& s, const ContactStep& step) {
+  s.moveScale.assign(s.bodies.size(), 1.0);
+  for (const Row& r : s.rows) {
+    const SolverBody& A = s.bodies[r.a];
+    const SolverBody& B = s.bodies[r.b];
+    const double solved = r.n.d.dot(B.v - B.v0 - A.v + A.v0) + r.n.rbXd.dot(B.w - B.w0) - r.n.raXd.dot(A.w - A.w0);
+    if (!(solved > step.restingSpeed)) continue;
+    const double opening = step.moveShare * step.h * solved, allowed = std::max(r.depth, 0.0);
+    if (!(opening > allowed)) continue;
+    const double scale = allowed / opening;
+    s.moveScale[r.a] = std::min(s.moveScale[r.a], scale);
+    s.moveScale[r.b] = std::min(s.moveScale[r.b], scale);
+  }
+}
+
 // The positions: the pseudo-velocities' move, and the move of the solve's impulses
 // taken as a constant force over the step (`share` of h times the velocity change they
 // made: h/2 for the methods exact on a constant force, as the integrator would move a
-// body under one). The integrator moved every body by the step's applied forces alone:
-// a body resting on the floor sank g h^2 / 2 and a box held by static friction on a
-// ramp slid g sin(theta) h^2 / 2; the solve's move takes both back, so that what
-// contact holds does not creep.
-void correctPositions(Solver& s, double h, double share, std::vector<BodyState>& Y) {
+// body under one), within limitMoves. The integrator moved every body by the step's
+// applied forces alone: a body resting on the floor sank g h^2 / 2 and a box held by
+// static friction on a ramp slid g sin(theta) h^2 / 2; the solve's move takes both
+// back, so that what contact holds does not creep.
+void correctPositions(Solver& s, const ContactStep& step, std::vector<BodyState>& Y) {
+  const double h = step.h, share = step.moveShare;
+  limitMoves(s, step);
   solvePseudoVelocities(s, h, share);
   for (size_t i = 0; i + 1 < s.bodies.size(); ++i) {
     const SolverBody& b = s.bodies[i];
     if (!s.involved[i]) continue;
-    const Vec3 move = h * b.vp + share * h * (b.v - b.v0);
-    const Vec3 turn = h * b.wp + share * h * (b.w - b.w0);
+    const double moved = share * s.moveScale[i];
+    const Vec3 move = h * b.vp + moved * h * (b.v - b.v0);
+    const Vec3 turn = h * b.wp + moved * h * (b.w - b.w0);
     if (move.isZero(0.0) && turn.isZero(0.0)) continue;
     Y[i].X += move;
     const Quat& q = Y[i].q;
@@ -645,11 +733,11 @@ ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Cont
   s.involved.assign(Y.size(), 0);
   prepareRows(model, contacts, step, Y, s);
   report.points = static_cast<int>(s.rows.size());
-  report.impactPasses = answerImpacts(s, step, Y);
   markVelocities(s);
+  report.impactPasses = answerImpacts(s, step, Y);
   warmStart(memory, s, Y);
   solveVelocities(s, Y, report);
-  correctPositions(s, step.h, step.moveShare, Y);
+  correctPositions(s, step, Y);
   store(s, std::max(kVelocityTolerance, 0.01 * step.restingSpeed), memory);
   return report;
 }

@@ -44,11 +44,15 @@ namespace contact_solver {
 constexpr int kMaxVelocityIterations = 60;   // cap of the Gauss-Seidel passes
 constexpr double kVelocityTolerance = 1e-5;  // m/s: stop when no impulse changes a velocity more
 // After this many passes without convergence, an island (bodies joined by rows) of at
-// most kMaxBlockRows points also has its normal impulses solved at once, exactly (a
-// heavy box on a light one: Gauss-Seidel passes the load down at a rate of the mass
-// ratio per pass, and 1e6 does not converge in any number of passes).
+// most kMaxBlockRows points also has its normal impulses solved at once, exactly, and
+// its friction too where its masses differ by kBlockMassRatio or more (a heavy box on a
+// light one: Gauss-Seidel passes the load down at a rate of the mass ratio per pass,
+// and 1e6 does not converge in any number of passes). The friction of like masses is
+// left to the passes, which hold a box on a ramp near its limit where the block's
+// least-norm friction overshoots a corner's disc.
 constexpr int kBlockAfter = 8;
-constexpr int kMaxBlockRows = 48;
+constexpr int kMaxBlockRows = 32;
+constexpr double kBlockMassRatio = 100.0;
 constexpr int kPositionIterations = 8;       // split-impulse passes
 constexpr double kSlop = 1e-4;               // m, overlap left alone (a resting body's seat)
 constexpr double kBaumgarte = 0.2;           // share of the overlap beyond the slop removed per step

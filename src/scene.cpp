@@ -343,10 +343,10 @@ Scene parseScene(const std::string& text) {
     m.maxStep = positive(s, "step", &step);
     m.tolerance = s.number("tolerance", defaults::kTolerance);
     if (m.tolerance < 0.0) fail("solver.tolerance", "must be >= 0, got " + num(m.tolerance));
-    const std::string contacts = s.string("contacts", "centroid");
-    if (contacts == "manifold")
-      m.contactSolver = ContactSolver::Manifold;
-    else if (contacts != "centroid")
+    const std::string contacts = s.string("contacts", "manifold");
+    if (contacts == "centroid")
+      m.contactSolver = ContactSolver::Centroid;
+    else if (contacts != "manifold")
       fail("solver.contacts", "must be one of centroid, manifold, got \"" + contacts + "\"");
     m.energyGainLimit = s.number("energyGainLimit", defaults::kEnergyGainLimit);
     if (m.energyGainLimit < 0.0)

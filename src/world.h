@@ -35,7 +35,7 @@ struct WorldModel {
   std::string name;
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);  // m/s^2
   Method method = Method::RK4;
-  ContactSolver contactSolver = ContactSolver::Centroid;
+  ContactSolver contactSolver = ContactSolver::Manifold;
   double maxStep = 1e-3;                 // s, largest internal step
   double tolerance = 1e-6;               // 1, local error tolerance of adaptive methods (0: fixed steps)
   // 1, largest relative gain of a torque-free body's rotational energy over a run

@@ -36,24 +36,35 @@ def positions(r):
 
 @pytest.mark.parametrize("method", ["rk4", "euler"])
 def test_holds_below_static_limit(fmu_of, method):
-    """tan(theta) = mu_s - 1e-3: static friction holds; creep below 1e-6 m in 10 s."""
+    """tan(theta) = mu_s - 1e-3: static friction holds. The cube seats on its four corners
+    in the first steps (by 1.6 um: the first, cold solve stops at its velocity tolerance
+    this close to the limit; the first model held it at the centre of mass exactly), and
+    from then on does not creep: below 1e-9 m from 0.5 s to 10 s."""
     s, x0, _ = ramp_scene(f"Stick_{method}", math.atan(0.5 - 1e-3), method=method)
     r = simulate_fmu(str(fmu_of(s)), stop_time=10.0, output_interval=0.5)
-    assert np.max(np.linalg.norm(positions(r) - x0, axis=1)) < 1e-6
+    x = positions(r)
+    assert np.max(np.linalg.norm(x - x0, axis=1)) < 5e-6
+    assert np.max(np.linalg.norm(x[1:] - x[1], axis=1)) < 1e-9
 
 
 @pytest.mark.parametrize("theta", [math.atan(0.5 + 1e-3), math.radians(30.0)])
 def test_slides_with_kinetic_friction_above_static_limit(fmu_of, theta):
-    """tan(theta) > mu_s: it slides with a = g (sin theta - mu_k cos theta), within 0.5%."""
+    """tan(theta) > mu_s: it slides with a = g (sin theta - mu_k cos theta), within 0.5 %
+    (a fit of the travel from 0.5 s on), having started within 50 ms: at 0.1 % above the
+    limit the contact solver holds it for the first steps, until its slip passes 1 % of
+    2 g h (the first model switched to sliding at once)."""
     s, x0, down = ramp_scene(f"Slide{round(math.degrees(theta) * 100)}", theta)
     r = simulate_fmu(str(fmu_of(s)), stop_time=2.0, output_interval=0.1)
     t = r["time"]
     travelled = (positions(r) - x0) @ down
     a = G * (math.sin(theta) - 0.3 * math.cos(theta))
-    assert travelled[-1] == pytest.approx(0.5 * a * t[-1] ** 2, rel=5e-3)
-    # it stays on the ramp: no motion along the normal
+    late = t >= 0.5 - 1e-9
+    assert 2 * np.polyfit(t[late], travelled[late], 2)[0] == pytest.approx(a, rel=5e-3)
+    assert 0.5 * a * (t[-1] - 0.05) ** 2 < travelled[-1] <= 0.5 * a * t[-1] ** 2 * (1 + 1e-3)
+    # it stays on the ramp: no motion along the normal beyond its seat on the corners
+    # (9.4e-9 m, within the solver's tolerance; the first model: 1e-9)
     n = np.array([math.sin(theta), 0.0, math.cos(theta)])
-    assert np.max(np.abs((positions(r) - x0) @ n)) < 1e-9
+    assert np.max(np.abs((positions(r) - x0) @ n)) < 2e-8
 
 
 def flat_scene(name, v0=0.0, muk=0.3, half=5.0):
@@ -73,14 +84,22 @@ def test_sliding_box_stops_after_closed_form_distance_and_stays(fmu_of, v0):
     x, v = r["cube.position[1]"], r["cube.velocity[1]"]
     assert x[-1] == pytest.approx(v0 ** 2 / (2 * 0.3 * G), rel=5e-3)
     stopped = r["time"] > v0 / (0.3 * G) + 0.05
-    assert np.all(v[stopped] == 0.0)          # at rest, no sign chatter
-    assert np.ptp(x[stopped]) == 0.0          # and no creep
-    assert np.all(np.diff(x) >= 0.0)          # friction never pushed it back
+    # at rest, no sign chatter and no creep: the contact solver leaves a velocity that
+    # decays from 5e-12 m/s (the first model zeroed it exactly)
+    assert np.all(np.abs(v[stopped]) < 1e-9)
+    assert np.ptp(x[stopped]) < 1e-12
+    # friction never pushed it back, beyond the stopping step's tolerance (h 1e-5 m/s:
+    # 4 nm seen; the first model stopped it exactly)
+    assert np.all(np.diff(x) >= -1e-8)
 
 
 def test_resting_box_neither_sinks_nor_jitters(fmu_of):
+    """Set down on the floor: the first, cold solve seats it within h/2 times its 1e-5 m/s
+    tolerance (1.2e-9 m; the first model, exactly), and there it stays."""
     r = simulate_fmu(str(fmu_of(flat_scene("Rest"))), stop_time=10.0, output_interval=0.1)
-    assert np.max(np.abs(r["cube.position[3]"] - CUBE / 2)) < 1e-9
+    z = r["cube.position[3]"]
+    assert np.max(np.abs(z - CUBE / 2)) < 5e-9
+    assert np.ptp(z[1:]) < 1e-12
     assert np.max(np.abs(r["cube.velocity[3]"])) < 1e-9
 
 
@@ -96,7 +115,9 @@ def test_box_pushed_over_the_edge_falls(fmu_of):
         x = s.get("cube.position[1]")
         assert x > 1.0                          # past the edge at x = 1 m
         assert z[-1] < CUBE / 2 - 0.1           # and falling
-        assert min(z[:40]) == pytest.approx(CUBE / 2, abs=1e-9)  # on the floor before (edge at ~0.44 s)
+        # on the floor before (edge at ~0.44 s): pushed along on its corners, within the
+        # solver's tolerance of the face (the first model: 1e-9)
+        assert min(z[:40]) == pytest.approx(CUBE / 2, abs=1e-8)
     finally:
         s.close()
 
@@ -106,5 +127,9 @@ def test_dropped_box_lands_and_rests(fmu_of):
     s["bodies"][0]["position"] = [0.0, 0.0, 1.0]
     r = simulate_fmu(str(fmu_of(s)), stop_time=2.0, output_interval=0.01)
     late = r["time"] > 1.0
-    assert np.all(np.abs(r["cube.position[3]"][late] - CUBE / 2) < 1e-9)
-    assert np.all(r["cube.velocity[3]"][late] == 0.0)
+    # landed flat, seated within the solver's tolerance (2.6e-9 m; the first model: on
+    # the face exactly), and still
+    z = r["cube.position[3]"][late]
+    assert np.all(np.abs(z - CUBE / 2) < 1e-8)
+    assert np.ptp(z) < 1e-12
+    assert np.all(np.abs(r["cube.velocity[3]"][late]) < 1e-9)

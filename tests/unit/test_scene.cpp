@@ -140,9 +140,11 @@ TEST(Scene, UnknownContactSolver) {
 }
 
 TEST(Scene, ContactSolverChosen) {
-  EXPECT_EQ(rigid::parseScene(sceneWith()).model.contactSolver, rigid::ContactSolver::Centroid);
-  EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "manifold"}, )")).model.contactSolver,
+  EXPECT_EQ(rigid::parseScene(sceneWith()).model.contactSolver, rigid::ContactSolver::Manifold);
+  EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"method": "rk4"}, )")).model.contactSolver,
             rigid::ContactSolver::Manifold);
+  EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "centroid"}, )")).model.contactSolver,
+            rigid::ContactSolver::Centroid);
 }
 
 TEST(Scene, NameNotIdentifier) {

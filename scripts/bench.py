@@ -12,8 +12,8 @@ here is asserted; the targets are printed with PASS or MISS.
    report's reference), ours and theirs, so that ratios are quoted at equal accuracy;
    then the pile of 1000 (100 in quick mode) timed again, ours and theirs interleaved
    round by round, the ratio its target is judged on.
-4. The manifold contact solver (solver.contacts = "manifold", BM_PileManifold): the
-   same piles over 3 s, timed while they fall (first second) and at rest (third
+4. The contact solver's piles over 3 s (BM_PileManifold, scenes that name
+   solver.contacts = "manifold", the default), timed while they fall (first second) and at rest (third
    second), with the stages' shares, the solver's iterations per solve, the overlap in
    the output state and the fastest body at 3 s; the pile of 1000 (100 in quick mode)
    at rest timed round by round with MuJoCo's at rest (Euler), the ratio its target is
@@ -485,7 +485,7 @@ def plots(out_dir, free, piles, peers, manifold=None):
 
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.6))
     ns = sorted(piles)
-    ax.loglog(ns, [piles[n]["total_us"] for n in ns], "o-", lw=2.4, label="rigidfmu (rk4, centroid contacts)")
+    ax.loglog(ns, [piles[n]["total_us"] for n in ns], "o-", lw=2.4, label="rigidfmu (rk4, BM_Pile: 0–1 s)")
     if manifold:
         ms = sorted(manifold)
         for w, style, name in (("fall", "D-", "falling, 0–1 s"), ("rest", "D--", "at rest, 2–3 s")):
@@ -518,7 +518,7 @@ def plots(out_dir, free, piles, peers, manifold=None):
     bx.set_ylim(0, 112)
     bx.set_xlabel("cubes N")
     bx.set_ylabel("share of the step's CPU time (%)")
-    bx.set_title("rigidfmu (centroid contacts): where a pile's step goes")
+    bx.set_title("rigidfmu: where a pile's first second goes")
     bx.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
     fig.tight_layout()
     files.append(out_dir / "piles.png")
@@ -567,7 +567,7 @@ def write_markdown(path, r):
       "and 1 kg (restitution 0, friction 0.6) in columns above a floor, falling for 1 s "
       "of simulated time, h = 2 ms (MuJoCo's default timestep). *Manifold piles* "
       "(`pile_manifold_<N>.json`): the same bodies and floor with `\"solver\": {\"contacts\": "
-      "\"manifold\"}`, over 3 s.\n")
+      "\"manifold\"}` named (the default), over 3 s.\n")
     w("![free bodies](performance/free_bodies.png)\n")
     w("![piles](performance/piles.png)\n")
 
@@ -575,7 +575,7 @@ def write_markdown(path, r):
     w("| target | measured | |\n|---|---|---|")
     for label, value, status in targets_rows:
         w(f"| {label} | {value} | **{status}** |")
-    w("\nThese are the default contact model's; the manifold solver's targets are in "
+    w("\nThe contact solver's targets for piles at rest are in "
       "[its section](#manifold-contact-solver).\n")
 
     w("## Core: free bodies (ns per body-step)\n")
@@ -726,15 +726,15 @@ def write_manifold_section(w, r):
     w("## Manifold contact solver\n")
     w("`BM_PileManifold/<N>`: the piles above answered by the manifold solver "
       "(`\"solver\": {\"contacts\": \"manifold\"}`, `pile_manifold_<N>.json`: same bodies, floor "
-      "and step), 3 s of simulated time from the same start. The old model never lets a pile "
-      "settle, so its benchmark times the first second only; this one times the first second "
+      "and step), 3 s of simulated time from the same start. `BM_Pile` times the first second as "
+      "a whole; this one times the first second "
       "(*falling*) and the third (*at rest*, after 2 s untimed), each step by this thread's CPU "
       "clock with the probes outside. *Stages*: `WorldData::profile` over the window's steps, "
       "as shares of their wall time (the profile's clock); *other* is the rest of the step. "
       "*Iterations per solve*: the solver's velocity iterations (`profile.iterations / "
       "profile.solves`). Overlap: in the output state, as for the piles above, the deepest over "
-      "all steps of the 3 s and over the third second. The old model's time per simulated "
-      "second (`BM_Pile`, first second) stands beside.\n")
+      "all steps of the 3 s and over the third second. `BM_Pile`'s time per simulated "
+      "second (the same solve's first second, timed as a whole) stands beside.\n")
     if not manifold:
         w("Not measured in this run.\n")
         return
@@ -743,7 +743,7 @@ def write_manifold_section(w, r):
         w(f"| {label} | {value} | **{status}** |")
     w("")
     w("| N | falling: per step | falling: per simulated second | at rest: per step | at rest: per "
-      "simulated second | old model (centroid) per simulated second, falling | iterations per solve, "
+      "simulated second | BM_Pile per simulated second, falling | iterations per solve, "
       "falling | iterations per solve, at rest | max overlap in the output state, 0–3 s | at rest, "
       "2–3 s | fastest body at 1 s | fastest body at 3 s |")
     w("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")

@@ -8,7 +8,7 @@
 
 #include <Eigen/Dense>
 
-#include "surface_contact.h"  // combineCoefficients
+#include "contact_rules.h"
 
 namespace rigid {
 

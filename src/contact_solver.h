@@ -1,7 +1,7 @@
-// The manifold contact solver (solver.contacts = "manifold"): one pipeline for every
-// touching pair, body-body and body-surface, a surface being a static box of infinite
-// mass. Each pair brings the points of its contact patch (up to 4, the detector's
-// manifold); the solver answers all of them together:
+// The contact solver (the only one; a scene may name it, solver.contacts = "manifold"):
+// one pipeline for every touching pair, body-body and body-surface, a surface being a
+// static box of infinite mass. Each pair brings the points of its contact patch (up
+// to 4, the detector's manifold); the solver answers all of them together:
 //   impacts      the seed's impulse j with restitution xi, pass after pass while some
 //                pair approaches faster than a resting body can (Newton's cradle);
 //   warm start   last step's accumulated impulses of the points that are still there;

@@ -17,24 +17,20 @@ inline Eigen::Vector4d orientationRate(const Vec3& omega, const Quat& q) {
   return 0.5 * (w * q).coeffs();
 }
 
-// Whether every force on a body stays constant over a step of length h from y: gravity
-// and the inputs (held over each step) only, with no media (buoyancy and drag follow
-// the state) and no surface within what the body can travel in the step (support and
-// friction follow the state too).
-bool forcesHeldOverStep(const WorldModel& model, const BodyConstants& body, const BodyInput& input,
-                        const BodyState& y, double h);
+// Whether every force on a body stays constant over a step: gravity and the inputs
+// (held over each step) only, with no media (buoyancy and drag follow the state).
+// Contacts act after the step (contact_solver.h), not as forces.
+bool forcesHeldOverStep(const WorldModel& model);
 
-// Every force on one body but the surfaces': gravity, the inputs, the media.
-// Adds to nothing: sets aux.F and aux.T. aux's V, R and omega must be those of y.
+// Every force on one body: gravity, the inputs, the media. Adds to nothing: sets
+// aux.F and aux.T. aux's V, R and omega must be those of y.
 void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
                              const BodyInput& input, const BodyState& y, BodyAux& aux);
 
 // dY/dt of one body (bodies exert no forces on each other outside contacts).
-// withSurfaces false leaves out the surfaces' support and friction, whose switches
-// (touching or not, sticking or sliding) a finite-difference Jacobian must not see.
 void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body,
                             const BodyInput& input, const BodyState& y, BodyAux& aux,
-                            BodyDerivative& dy, bool withSurfaces = true);
+                            BodyDerivative& dy);
 
 // For every body: auxiliaries of Y, the accumulated force and torque, and
 // dY/dt = (V, 1/2 omega q, F, T). aux is filled as a by-product.

@@ -133,16 +133,16 @@ void rk4Bodies(const WorldModel& m, WorldData& d, double h, const std::vector<in
   }
 }
 
-// Bodies whose forces are held over the step (free flight: forcesHeldOverStep) take
-// the packed kernel; the others (near a surface, in a medium) the classic stages.
+// Bodies whose forces are held over the step (forcesHeldOverStep: no medium) take the
+// packed kernel; the others the classic stages.
 void rk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
   std::vector<int>& held = d.scratch.held;
   std::vector<int>& felt = d.scratch.felt;
   const int n = static_cast<int>(d.Y.size());
   held.clear();
   felt.clear();
-  for (int i = 0; i < n; ++i)
-    (forcesHeldOverStep(m, m.bodies[i], d.input[i], d.Y[i], h) ? held : felt).push_back(i);
+  const bool heldForces = forcesHeldOverStep(m);
+  for (int i = 0; i < n; ++i) (heldForces ? held : felt).push_back(i);
   if (!held.empty()) rk4HeldForcesStep(m, d, h, held, next);
   if (!felt.empty()) rk4Bodies(m, d, h, felt, next);
 }
@@ -401,10 +401,9 @@ Vec13 pack(const BodyDerivative& d) {
   return v;
 }
 
-Vec13 bodyRate(const WorldModel& m, size_t i, const BodyInput& in, const Vec13& y, BodyAux& aux,
-               bool withSurfaces = true) {
+Vec13 bodyRate(const WorldModel& m, size_t i, const BodyInput& in, const Vec13& y, BodyAux& aux) {
   BodyDerivative d;
-  evaluateBodyDerivative(m, m.bodies[i], in, unpack(y), aux, d, withSurfaces);
+  evaluateBodyDerivative(m, m.bodies[i], in, unpack(y), aux, d);
   return pack(d);
 }
 
@@ -420,7 +419,7 @@ void rosenbrockStep(const WorldModel& m, WorldData& d, double h, std::vector<Bod
       Vec13 yp = y, ym = y;
       yp[j] += delta;
       ym[j] -= delta;
-      J.col(j) = (bodyRate(m, i, in, yp, d.aux[i], false) - bodyRate(m, i, in, ym, d.aux[i], false)) /
+      J.col(j) = (bodyRate(m, i, in, yp, d.aux[i]) - bodyRate(m, i, in, ym, d.aux[i])) /
                  (2.0 * delta);
     }
     // q's rows are left out: q is turned by the free rotation below, not by the stages.

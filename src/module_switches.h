@@ -11,6 +11,6 @@
 #ifndef RIGID_WITH_COLLISIONS
 #define RIGID_WITH_COLLISIONS 1
 #endif
-#if RIGID_WITH_COLLISIONS && !RIGID_WITH_SURFACES
-#error "the collision module needs the surface module"
+#if RIGID_WITH_COLLISIONS != RIGID_WITH_SURFACES
+#error "surfaces and collisions come together (modules.h)"
 #endif

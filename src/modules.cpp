@@ -6,16 +6,12 @@ namespace rigid {
 
 unsigned modulesNeeded(const WorldModel& model) {
   unsigned m = 0;
-  if (!model.surfaces.empty()) m |= kModuleSurfaces;
   if (!model.media.empty()) m |= kModuleMedia;
   int colliding = 0;
   for (const BodyConstants& b : model.bodies) colliding += b.collides ? 1 : 0;
-  // FCL answers body-body contacts and, with the manifold solver, every body on a
-  // surface (the first model: colliding bodies against the sides of surfaces).
-  const bool manifold = model.contactSolver == ContactSolver::Manifold;
-  if (manifold && !model.surfaces.empty()) colliding = static_cast<int>(model.bodies.size());
-  if (colliding >= 2 || (colliding >= 1 && !model.surfaces.empty()))
-    m |= kModuleCollisions | kModuleSurfaces;
+  // FCL answers body-body contacts and every body on a surface (a static box of the
+  // contact solve): surfaces come with the collision module.
+  if (colliding >= 2 || !model.surfaces.empty()) m |= kModuleCollisions | kModuleSurfaces;
   return m;
 }
 

@@ -12,13 +12,13 @@ namespace rigid {
 struct WorldModel;
 
 enum ModuleBits : unsigned {
-  kModuleSurfaces = 1u << 0,    // surface_contact: support, friction, landing
+  kModuleSurfaces = 1u << 0,    // surfaces, as static boxes of the contact solve (with collisions)
   kModuleMedia = 1u << 1,       // medium: buoyancy, drag
-  kModuleCollisions = 1u << 2,  // collision_detection (FCL), collision_response
+  kModuleCollisions = 1u << 2,  // collision_detection (FCL), contact_solver
 };
 
-// The modules a world needs. Collisions bring the surface module with them (the
-// response treats bodies resting on surfaces as static partners).
+// The modules a world needs. Surfaces and collisions come together: a surface is a
+// static box of the contact solve, and body pairs meet surfaces through it.
 unsigned modulesNeeded(const WorldModel& model);
 
 // The modules compiled into this binary.

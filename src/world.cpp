@@ -11,11 +11,9 @@
 #include "modules.h"
 
 #include "module_switches.h"
-#if RIGID_WITH_SURFACES
-#include "surface_contact.h"
-#endif
 #if RIGID_WITH_COLLISIONS
-#include "collision_response.h"
+#include "collision_cache.h"
+#include "contact_rules.h"
 #include "contact_solver.h"
 #endif
 
@@ -25,10 +23,6 @@ unsigned modulesBuilt() {
   return (RIGID_WITH_SURFACES ? kModuleSurfaces : 0u) | (RIGID_WITH_MEDIA ? kModuleMedia : 0u) |
          (RIGID_WITH_COLLISIONS ? kModuleCollisions : 0u);
 }
-
-namespace {
-bool manifold(const WorldModel& model) { return model.contactSolver == ContactSolver::Manifold; }
-}  // namespace
 
 WorldData initialData(const WorldModel& model) {
   const size_t n = model.bodies.size();
@@ -43,9 +37,9 @@ WorldData initialData(const WorldModel& model) {
   std::vector<bool> collides, meetsSurfaces;
   for (const BodyConstants& body : model.bodies) {
     collides.push_back(body.collides);
-    // The manifold solver answers surfaces as static boxes: a body that takes no part
-    // in collisions ("collision": false) still rests on them.
-    meetsSurfaces.push_back(body.collides || (manifold(model) && !model.surfaces.empty()));
+    // Surfaces are static boxes of the contact solve: a body that takes no part in
+    // collisions ("collision": false) still rests on them.
+    meetsSurfaces.push_back(body.collides || !model.surfaces.empty());
   }
   const long colliding = std::count(collides.begin(), collides.end(), true);
   const long onSurfaces = model.surfaces.empty() ? 0 : std::count(meetsSurfaces.begin(), meetsSurfaces.end(), true);
@@ -130,42 +124,34 @@ void normaliseOrientations(std::vector<BodyState>& Y) {
   for (BodyState& y : Y) y.q.normalize();
 }
 
-// The distance within which bodies count as touching (m): contacts are detected with
-// this margin, so that a body resting on another is answered even with a tiny gap.
-constexpr double kContactMargin = 1e-6;
 // Pairs apart by less than this (m) are detected too, speculatively: an inelastic one
-// takes the impulse that keeps it from closing more than its gap in the next step,
-// and the position correction, which may lift a body off its support, must know the
-// neighbours it could push it into. (4 mm: a cube falling at 2 m/s closes 4 mm in a
-// 2 ms step; 2 mm and 6 mm both cost more on the pile of 1000, docs/performance.md.)
+// takes the impulse that keeps it from closing more than its gap in the next step, and
+// a box falling flat meets the floor with its far corners too. (4 mm: a cube falling
+// at 2 m/s closes 4 mm in a 2 ms step; 2 mm and 6 mm both cost more on the pile of
+// 1000, docs/performance.md.)
 constexpr double kSpeculativeMargin = 4e-3;
-// Rounds of detection and position correction after the response: when the
-// correction may have closed the gap of a pair that was not detected (at least the
-// speculative margin), that pair may overlap.
-constexpr int kMaxSeparationRounds = 4;
-
-// The contacts of Y for the response, into the collision cache. The manifold solver
-// wants every point of a patch within the speculative margin (a box falling flat
-// meets the floor with its far corners too); the first model wants touching points
-// and speculative pairs apart.
-[[maybe_unused]] void detectForResponse(const WorldModel& model, WorldData& data, const std::vector<BodyState>& Y) {
+// The contacts of Y for the response, into the collision cache: every point of a
+// patch within the speculative margin.
+[[maybe_unused]] void detectForResponse(WorldData& data, const std::vector<BodyState>& Y) {
 #if RIGID_WITH_COLLISIONS
   CollisionCache* c = data.collision.get();
-  c->detector.detect(Y, manifold(model) ? kSpeculativeMargin : kContactMargin, c->contacts, profileOf(data),
-                     kSpeculativeMargin);
+  c->detector.detect(Y, kSpeculativeMargin, c->contacts, profileOf(data), kSpeculativeMargin);
 #else
-  (void)model, (void)data, (void)Y;
+  (void)data, (void)Y;
 #endif
 }
 
-// The manifold solver's response: every contact of `after`, body-body and
-// body-surface, in one solve (contact_solver.h).
-[[maybe_unused]] void respondByManifolds(const WorldModel& model, WorldData& data, double h,
-                                         std::vector<BodyState>& after, bool detected) {
+// Contact response: what happens at an instant rather than over the step. Every
+// contact of `after`, body-body and body-surface, in one solve (contact_solver.h).
+// `detected`: the collision cache already holds the contacts of `after`, so they are
+// not detected again.
+[[maybe_unused]] void respondToContacts(const WorldModel& model, WorldData& data, double h,
+                                        std::vector<BodyState>& after, bool detected) {
+  std::fill(data.contacts.begin(), data.contacts.end(), 0);
 #if RIGID_WITH_COLLISIONS
   CollisionCache* c = data.collision.get();
   if (!c) return;
-  if (!detected) detectForResponse(model, data, after);
+  if (!detected) detectForResponse(data, after);
   Stopwatch response(slotOf(data, &StepProfile::response));
   const ContactStep step{h, restingNormalSpeed(model.gravity, h), constantForceDisplacement(model.method)};
   const ContactSolveReport report = solveContacts(model, c->contacts, step, data.contactMemory, after, data.contacts, c->solver);
@@ -174,46 +160,7 @@ constexpr int kMaxSeparationRounds = 4;
     data.profile.iterations += report.iterations;
   }
 #else
-  (void)model, (void)data, (void)h, (void)after, (void)detected;
-#endif
-}
-
-// Contact response: what happens at an instant rather than over the step. The
-// surfaces need the applied force at the new state to tell whether static friction
-// holds a body that has come to rest. `detected`: the collision cache already holds
-// the contacts of `after` (with the margin), so they are not detected again.
-[[maybe_unused]] void respondToContacts(const WorldModel& model, WorldData& data, double h,
-                       std::vector<BodyState>& after, bool detected) {
-  std::fill(data.contacts.begin(), data.contacts.end(), 0);
   (void)model, (void)h, (void)after, (void)detected;
-  if (manifold(model)) return respondByManifolds(model, data, h, after, detected);
-#if RIGID_WITH_SURFACES
-  if (!model.surfaces.empty()) {
-    Stopwatch response(slotOf(data, &StepProfile::response));
-    for (size_t i = 0; i < after.size(); ++i) {
-      if (clearOfSurfaces(model.surfaces, model.bodies[i].shape, after[i].X, 0.0)) continue;
-      BodyAux& aux = data.aux[i];
-      computeAuxiliaries(model.bodies[i], after[i], aux);
-      accumulateAppliedForces(model, model.bodies[i], data.input[i], after[i], aux);
-      data.contacts[i] =
-          respondToSurfaces(model.surfaces, model.bodies[i], model.gravity, aux, h, data.Y[i], after[i]);
-    }
-  }
-#endif
-#if RIGID_WITH_COLLISIONS
-  if (CollisionCache* c = data.collision.get()) {
-    if (!detected) detectForResponse(model, data, after);
-    double moved = 0.0;
-    {
-      Stopwatch response(slotOf(data, &StepProfile::response));
-      moved = resolveContacts(model, c->contacts, h, kSpeculativeMargin, after, data.contacts);
-    }
-    for (int round = 1; round < kMaxSeparationRounds && moved >= kSpeculativeMargin; ++round) {
-      c->detector.detect(after, kContactMargin, c->contacts, profileOf(data), kSpeculativeMargin);
-      Stopwatch response(slotOf(data, &StepProfile::response));
-      moved = separateOverlaps(model, c->contacts, kSpeculativeMargin, after);
-    }
-  }
 #endif
 }
 
@@ -254,26 +201,19 @@ int advance(const WorldModel& model, WorldData& data, double tau, std::vector<Bo
 // whatever the answer, for the response to use.
 [[maybe_unused]] bool anyImpact(const WorldModel& model, WorldData& data, double h, const std::vector<BodyState>& Y,
                                 bool forResponse = false) {
-#if RIGID_WITH_SURFACES
-  for (size_t i = 0; i < Y.size() && surfacesAsForces(model); ++i)
-    if (struckSurface(model.surfaces, model.bodies[i], model.gravity, h, Y[i])) return true;
-#endif
 #if RIGID_WITH_COLLISIONS
-  // Only bouncing impacts are located (anyContactImpact) and restitutions combine by
-  // geometric mean, so with no colliding body of xi > 0 (a pile of inelastic cubes)
-  // there is nothing to detect here.
-  const bool onSurfaces = manifold(model) && !model.surfaces.empty();
+  // Only bouncing impacts are located (anyBouncingImpact) and restitutions combine by
+  // geometric mean, so with no body of xi > 0 that meets something (a pile of
+  // inelastic cubes) there is nothing to detect here.
   const bool bouncy = std::any_of(model.bodies.begin(), model.bodies.end(), [&](const BodyConstants& b) {
-    return (b.collides || onSurfaces) && b.restitution > 0.0;
+    return (b.collides || !model.surfaces.empty()) && b.restitution > 0.0;
   });
   if (CollisionCache* c = data.collision.get(); c && (bouncy || forResponse)) {
     if (forResponse)
-      detectForResponse(model, data, Y);
+      detectForResponse(data, Y);
     else
       c->detector.detect(Y, 0.0, c->contacts, profileOf(data), 0.0);
-    const double resting = restingNormalSpeed(model.gravity, h);
-    if (manifold(model)) return bouncy && anyBouncingImpact(model, c->contacts, Y, resting);
-    return bouncy && anyContactImpact(model, c->contacts, Y, resting);
+    return bouncy && anyBouncingImpact(model, c->contacts, Y, restingNormalSpeed(model.gravity, h));
   }
 #endif
   (void)model, (void)data, (void)h, (void)Y, (void)forResponse;
@@ -397,7 +337,7 @@ int collisionSubsteps(const WorldModel& model, const WorldData& data, double h) 
 // One step of length h: impacts split it.
 StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
   std::vector<BodyState>& next = data.scratch.next;
-#if !(RIGID_WITH_SURFACES || RIGID_WITH_COLLISIONS)
+#if !RIGID_WITH_COLLISIONS
   // Nothing to touch: the integrator alone.
   const int steps = advance(model, data, h, next);
   if (steps == 0) return failed(-1);
@@ -414,16 +354,14 @@ StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
     // Out of range: refused before contact detection ever sees it.
     if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);
     double taken = rest;
-    // Without surfaces, the end state's contacts are detected once, for the impact
-    // check and (when no impact splits the step) for the response. Surfaces answer
-    // first and move bodies out of their faces, so body contacts are detected after.
-    const bool reuse = !surfacesAsForces(model);
+    // The end state's contacts are detected once, for the impact check and (when no
+    // impact splits the step) for the response.
     bool detected = false;
     if (impacts < kMaxImpactsPerStep) {
-      if (anyImpact(model, data, h, next, reuse)) {
+      if (anyImpact(model, data, h, next, true)) {
         if (!anyImpact(model, data, h, data.Y)) taken = locateImpact(model, data, h, rest, next);
       } else {
-        detected = reuse;
+        detected = true;
       }
     }
     respondToContacts(model, data, h, next, detected);

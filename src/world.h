@@ -14,20 +14,7 @@
 
 namespace rigid {
 
-struct CollisionCache;  // collision_response.h: the FCL detector and its contacts
-
-// How contacts are answered (scene field solver.contacts).
-enum class ContactSolver {
-  // The first model, kept beside the default until the manifold solver has replaced
-  // it everywhere: surfaces support and rub a body at its centre of mass in the force
-  // stage; a touching pair of bodies takes one impulse at its patch's centroid.
-  Centroid,
-  // The default. One pipeline for every pair, body-body and body-surface (a surface
-  // is a static box): manifolds of up to 4 points kept across steps, warm-started
-  // accumulated impulses with a friction cone, split-impulse position correction
-  // (contact_solver.h).
-  Manifold,
-};
+struct CollisionCache;  // collision_cache.h: the FCL detector and its contacts
 
 // Constants of one scene. Parameters of the FMU (mass, gravity, method, ...) change
 // them only between runs or, for tunable ones, between communication steps.
@@ -35,7 +22,6 @@ struct WorldModel {
   std::string name;
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);  // m/s^2
   Method method = Method::RK4;
-  ContactSolver contactSolver = ContactSolver::Manifold;
   double maxStep = 1e-3;                 // s, largest internal step
   double tolerance = 1e-6;               // 1, local error tolerance of adaptive methods (0: fixed steps)
   // 1, largest relative gain of a torque-free body's rotational energy over a run
@@ -45,12 +31,6 @@ struct WorldModel {
   std::vector<Surface> surfaces;
   std::vector<Medium> media;
 };
-
-// Whether surfaces act as forces in the force stage (the first contact model); with
-// the manifold solver they are static boxes of the contact solve instead.
-inline bool surfacesAsForces(const WorldModel& model) {
-  return !model.surfaces.empty() && model.contactSolver == ContactSolver::Centroid;
-}
 
 // Work buffers of the integrators, sized once so that a step allocates nothing.
 struct Scratch {
@@ -69,9 +49,9 @@ struct StepProfile {
   double integration = 0.0;  // the integrator's stages (impact location's re-integrations too)
   double broadphase = 0.0;   // poses, bounding boxes, the sweep in grid rows and its candidate pairs
   double narrowphase = 0.0;  // contact points of the candidate pairs
-  double response = 0.0;     // impulses, friction, position correction, surfaces' landing
+  double response = 0.0;     // the contact solve: impulses, friction, position correction
   long steps = 0;            // internal steps profiled
-  long solves = 0;           // contact solves (ContactSolver::Manifold)
+  long solves = 0;           // contact solves
   long iterations = 0;       // their velocity iterations, summed
 };
 
@@ -96,8 +76,8 @@ struct WorldData {
   // Body-body collision detection, when at least two bodies can collide; shared by
   // copies of the data (it holds no state between steps but FCL's objects).
   std::shared_ptr<CollisionCache> collision;
-  // ContactSolver::Manifold: the contact points of the last step with their
-  // accumulated impulses, for the next step's warm start. Part of the FMU state.
+  // The contact points of the last step with their accumulated impulses, for the
+  // next step's warm start. Part of the FMU state.
   std::vector<ContactMemory> contactMemory;
   Scratch scratch;
   bool profiling = false;

@@ -1,4 +1,4 @@
-// The manifold contact solver (solver.contacts = "manifold") against closed forms of
+// The contact solver against closed forms of
 // statics and rolling: the seed's impulse j as its one-point case, boxes that tip or
 // fall back, rolling without slipping and its incline accelerations, the tipping
 // threshold of a pushed box, torsional friction, stacks and piles that come to rest,
@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "contact_rules.h"
 #include "contact_solver.h"
 #include "scene.h"
 #include "world.h"
@@ -103,6 +104,12 @@ struct Sim {
   rigid::WorldModel model;
   rigid::WorldData data;
 };
+
+TEST(ContactSolver, EqualCoefficientsCombineToThatValue) {
+  for (double mu : {0.0, 0.1, 0.5, 0.9, 1.0}) EXPECT_DOUBLE_EQ(rigid::combineCoefficients(mu, mu), mu);
+  EXPECT_DOUBLE_EQ(rigid::combineCoefficients(0.25, 1.0), 0.5);
+  EXPECT_DOUBLE_EQ(rigid::combineCoefficients(0.0, 0.8), 0.0);
+}
 
 // ---- the seed's impulse: the one-point, one-iteration case ----------------------------
 

@@ -134,17 +134,12 @@ TEST(Scene, UnknownSolverField) {
                      "solver.dt: unknown field (known: method, step, tolerance, energyGainLimit, contacts)");
 }
 
-TEST(Scene, UnknownContactSolver) {
+TEST(Scene, ContactSolverIsTheOnlyOne) {
+  EXPECT_NO_THROW(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "manifold"}, )")));
+  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "centroid"}, )"),
+                     "solver.contacts: \"centroid\" (the first contact model) was removed; must be \"manifold\"");
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "penalty"}, )"),
-                     "solver.contacts: must be one of centroid, manifold, got \"penalty\"");
-}
-
-TEST(Scene, ContactSolverChosen) {
-  EXPECT_EQ(rigid::parseScene(sceneWith()).model.contactSolver, rigid::ContactSolver::Manifold);
-  EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"method": "rk4"}, )")).model.contactSolver,
-            rigid::ContactSolver::Manifold);
-  EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "centroid"}, )")).model.contactSolver,
-            rigid::ContactSolver::Centroid);
+                     "solver.contacts: must be \"manifold\", got \"penalty\"");
 }
 
 TEST(Scene, NameNotIdentifier) {

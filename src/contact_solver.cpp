@@ -435,6 +435,39 @@ double coupling(const Solver& s, const Row& i, const Axis& x, const Row& j, cons
 const Axis& axisNumber(const Row& r, int axis) { return axis == 0 ? r.n : axis == 1 ? r.t1 : r.t2; }
 double& impulseNumber(Row& r, int axis) { return axis == 0 ? r.lambdaN : axis == 1 ? r.lambdaT1 : r.lambdaT2; }
 
+// The block's matrix (Delassus entries of its unknowns) and its residual (velocity
+// minus target along each unknown's axis).
+void assembleBlock(const Solver& s, const std::vector<std::pair<size_t, int>>& unknowns, Eigen::MatrixXd& K,
+                   Eigen::VectorXd& residual) {
+  const Eigen::Index n = static_cast<Eigen::Index>(unknowns.size());
+  for (Eigen::Index p = 0; p < n; ++p) {
+    const Row& r = s.rows[unknowns[p].first];
+    const Axis& x = axisNumber(r, unknowns[p].second);
+    residual(p) = relativeVelocity(s, r, x) - (unknowns[p].second == 0 ? r.target : 0.0);
+    for (Eigen::Index q = 0; q <= p; ++q) {
+      const Row& o = s.rows[unknowns[q].first];
+      K(p, q) = K(q, p) = coupling(s, r, x, o, axisNumber(o, unknowns[q].second));
+    }
+  }
+}
+
+// Friction outside its disc projected onto it and held there from now on. Returns
+// whether some row's was.
+bool projectFriction(Solver& s, const std::vector<size_t>& rows, std::vector<BodyState>& Y) {
+  bool changed = false;
+  for (size_t i : rows) {
+    Row& r = s.rows[i];
+    const double t = length(r.lambdaT1, r.lambdaT2), limit = frictionLimit(r);
+    if (t <= limit) continue;
+    const double scale = limit / t;
+    applyImpulse(s, r, r.t1, r.lambdaT1 * (scale - 1.0), Y);
+    applyImpulse(s, r, r.t2, r.lambdaT2 * (scale - 1.0), Y);
+    r.lambdaT1 *= scale, r.lambdaT2 *= scale;
+    r.held = changed = true;
+  }
+  return changed;
+}
+
 // The impulses of `rows` solved together, exactly: lambda_n >= 0 with v_n = target
 // wherever lambda_n > 0 and, withFriction, the slip stopped at every sticking point
 // whose friction stays inside its disc (else the friction is held as it is). An active set: rows that would pull are dropped, points whose
@@ -463,15 +496,7 @@ void solveBlock(Solver& s, const std::vector<size_t>& rows, bool withFriction, s
     const Eigen::Index n = static_cast<Eigen::Index>(unknowns.size());
     Eigen::MatrixXd K(n, n);
     Eigen::VectorXd residual(n);
-    for (Eigen::Index p = 0; p < n; ++p) {
-      const Row& r = s.rows[unknowns[p].first];
-      const Axis& x = axisNumber(r, unknowns[p].second);
-      residual(p) = relativeVelocity(s, r, x) - (unknowns[p].second == 0 ? r.target : 0.0);
-      for (Eigen::Index q = 0; q <= p; ++q) {
-        const Row& o = s.rows[unknowns[q].first];
-        K(p, q) = K(q, p) = coupling(s, r, x, o, axisNumber(o, unknowns[q].second));
-      }
-    }
+    assembleBlock(s, unknowns, K, residual);
     // regularised, then refined twice against the exact matrix: the regularisation's
     // own error (1e-9 of a 1e6 kg box's load) would otherwise be left in the velocities
     Eigen::MatrixXd regular = K;
@@ -488,17 +513,7 @@ void solveBlock(Solver& s, const std::vector<size_t>& rows, bool withFriction, s
       applyImpulse(s, r, axisNumber(r, axis), total - lambda, Y);
       lambda = total;
     }
-    bool changed = false;
-    for (size_t i : active) {
-      Row& r = s.rows[i];
-      const double t = length(r.lambdaT1, r.lambdaT2), limit = frictionLimit(r);
-      if (t <= limit) continue;
-      const double scale = limit / t;
-      applyImpulse(s, r, r.t1, r.lambdaT1 * (scale - 1.0), Y);
-      applyImpulse(s, r, r.t2, r.lambdaT2 * (scale - 1.0), Y);
-      r.lambdaT1 *= scale, r.lambdaT2 *= scale;
-      r.held = changed = true;
-    }
+    const bool changed = projectFriction(s, active, Y);
     const size_t before = active.size();
     active.erase(std::remove_if(active.begin(), active.end(), [&](size_t i) { return s.rows[i].lambdaN == 0.0; }),
                  active.end());

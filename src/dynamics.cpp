@@ -12,11 +12,11 @@ void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
                              const BodyInput& in, const BodyState& y, BodyAux& aux) {
   aux.F = body.mass * model.gravity + in.force;
   aux.T = in.torque;
-#if RIGID_WITH_MEDIA
-  for (const Medium& medium : model.media) addMediumForces(medium, body, y, model.gravity, aux);
-#else
-  (void)y;
-#endif
+  if constexpr (modules::kMedia) {
+    for (const Medium& medium : model.media) addMediumForces(medium, body, y, model.gravity, aux);
+  } else {
+    (void)y;
+  }
 }
 
 void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body,

@@ -1,5 +1,8 @@
 // Which optional modules this translation unit compiles in (see modules.h): the build
-// sets RIGID_WITH_* per binary; by default all of them.
+// sets RIGID_WITH_* per binary (by default all of them), and the code asks the
+// constants below with `if constexpr`, so that both sides of a switch are compiled in
+// every binary and only the chosen one is emitted: an absent module costs nothing in
+// the step, and its library (FCL) is not linked.
 #pragma once
 
 #ifndef RIGID_WITH_SURFACES
@@ -14,3 +17,9 @@
 #if RIGID_WITH_COLLISIONS != RIGID_WITH_SURFACES
 #error "surfaces and collisions come together (modules.h)"
 #endif
+
+namespace rigid::modules {
+constexpr bool kSurfaces = RIGID_WITH_SURFACES;
+constexpr bool kMedia = RIGID_WITH_MEDIA;
+constexpr bool kCollisions = RIGID_WITH_COLLISIONS;
+}  // namespace rigid::modules

@@ -10,18 +10,16 @@
 #include "dynamics.h"
 #include "modules.h"
 
-#include "module_switches.h"
-#if RIGID_WITH_COLLISIONS
 #include "collision_cache.h"
 #include "contact_rules.h"
 #include "contact_solver.h"
-#endif
+#include "module_switches.h"
 
 namespace rigid {
 
 unsigned modulesBuilt() {
-  return (RIGID_WITH_SURFACES ? kModuleSurfaces : 0u) | (RIGID_WITH_MEDIA ? kModuleMedia : 0u) |
-         (RIGID_WITH_COLLISIONS ? kModuleCollisions : 0u);
+  return (modules::kSurfaces ? kModuleSurfaces : 0u) | (modules::kMedia ? kModuleMedia : 0u) |
+         (modules::kCollisions ? kModuleCollisions : 0u);
 }
 
 WorldData initialData(const WorldModel& model) {
@@ -33,26 +31,26 @@ WorldData initialData(const WorldModel& model) {
   d.inputRate.assign(n, BodyInput{});
   d.aux.resize(n);
   d.contacts.assign(n, 0);
-#if RIGID_WITH_COLLISIONS
-  std::vector<bool> collides, meetsSurfaces;
-  for (const BodyConstants& body : model.bodies) {
-    collides.push_back(body.collides);
-    // Surfaces are static boxes of the contact solve: a body that takes no part in
-    // collisions ("collision": false) still rests on them.
-    meetsSurfaces.push_back(body.collides || !model.surfaces.empty());
-  }
-  const long colliding = std::count(collides.begin(), collides.end(), true);
-  const long onSurfaces = model.surfaces.empty() ? 0 : std::count(meetsSurfaces.begin(), meetsSurfaces.end(), true);
-  if (colliding >= 2 || onSurfaces >= 1) {
-    d.collision = std::make_shared<CollisionCache>(
-        CollisionCache{CollisionDetector(model, collides, meetsSurfaces), {}, {}, {}, {}, {}});
-    for (size_t i = 0; i < model.bodies.size(); ++i) {
-      const Shape& shape = model.bodies[i].shape;
-      d.collision->halfThickness.push_back(meetsSurfaces[i] ? halfThickness(shape) : 0.0);
-      d.collision->boundingRadius.push_back(meetsSurfaces[i] ? boundingRadius(shape) : 0.0);
+  if constexpr (modules::kCollisions) {
+    std::vector<bool> collides, meetsSurfaces;
+    for (const BodyConstants& body : model.bodies) {
+      collides.push_back(body.collides);
+      // Surfaces are static boxes of the contact solve: a body that takes no part in
+      // collisions ("collision": false) still rests on them.
+      meetsSurfaces.push_back(body.collides || !model.surfaces.empty());
+    }
+    const long colliding = std::count(collides.begin(), collides.end(), true);
+    const long onSurfaces = model.surfaces.empty() ? 0 : std::count(meetsSurfaces.begin(), meetsSurfaces.end(), true);
+    if (colliding >= 2 || onSurfaces >= 1) {
+      d.collision = std::make_shared<CollisionCache>(
+          CollisionCache{CollisionDetector(model, collides, meetsSurfaces), {}, {}, {}, {}, {}});
+      for (size_t i = 0; i < model.bodies.size(); ++i) {
+        const Shape& shape = model.bodies[i].shape;
+        d.collision->halfThickness.push_back(meetsSurfaces[i] ? halfThickness(shape) : 0.0);
+        d.collision->boundingRadius.push_back(meetsSurfaces[i] ? boundingRadius(shape) : 0.0);
+      }
     }
   }
-#endif
   d.scratch.stage.resize(n);
   d.scratch.next.resize(n);
   d.scratch.y.resize(n);
@@ -118,7 +116,7 @@ double* slotOf(WorldData& data, double StepProfile::*field) {
   return data.profiling ? &(data.profile.*field) : nullptr;
 }
 
-[[maybe_unused]] StepProfile* profileOf(WorldData& data) { return data.profiling ? &data.profile : nullptr; }
+StepProfile* profileOf(WorldData& data) { return data.profiling ? &data.profile : nullptr; }
 
 void normaliseOrientations(std::vector<BodyState>& Y) {
   for (BodyState& y : Y) y.q.normalize();
@@ -130,40 +128,6 @@ void normaliseOrientations(std::vector<BodyState>& Y) {
 // at 2 m/s closes 4 mm in a 2 ms step; 2 mm and 6 mm both cost more on the pile of
 // 1000, docs/performance.md.)
 constexpr double kSpeculativeMargin = 4e-3;
-// The contacts of Y for the response, into the collision cache: every point of a
-// patch within the speculative margin.
-[[maybe_unused]] void detectForResponse(WorldData& data, const std::vector<BodyState>& Y) {
-#if RIGID_WITH_COLLISIONS
-  CollisionCache* c = data.collision.get();
-  c->detector.detect(Y, kSpeculativeMargin, c->contacts, profileOf(data), kSpeculativeMargin);
-#else
-  (void)data, (void)Y;
-#endif
-}
-
-// Contact response: what happens at an instant rather than over the step. Every
-// contact of `after`, body-body and body-surface, in one solve (contact_solver.h).
-// `detected`: the collision cache already holds the contacts of `after`, so they are
-// not detected again.
-[[maybe_unused]] void respondToContacts(const WorldModel& model, WorldData& data, double h,
-                                        std::vector<BodyState>& after, bool detected) {
-  std::fill(data.contacts.begin(), data.contacts.end(), 0);
-#if RIGID_WITH_COLLISIONS
-  CollisionCache* c = data.collision.get();
-  if (!c) return;
-  if (!detected) detectForResponse(data, after);
-  Stopwatch response(slotOf(data, &StepProfile::response));
-  const ContactStep step{h, restingNormalSpeed(model.gravity, h), constantForceDisplacement(model.method)};
-  const ContactSolveReport report = solveContacts(model, c->contacts, step, data.contactMemory, after, data.contacts, c->solver);
-  if (data.profiling) {
-    ++data.profile.solves;
-    data.profile.iterations += report.iterations;
-  }
-#else
-  (void)model, (void)h, (void)after, (void)detected;
-#endif
-}
-
 // A state the physics can still answer: finite, and positions within 1e12 m of the
 // origin (collision detection's geometry fails far beyond, and no scene is that big).
 constexpr double kMaxDistance = 1e12;  // m
@@ -196,44 +160,74 @@ int advance(const WorldModel& model, WorldData& data, double tau, std::vector<Bo
   return steps;
 }
 
-// Whether some body strikes a surface or another body in Y. With forResponse the
-// contacts of Y are detected into the collision cache (with the response's margin)
-// whatever the answer, for the response to use.
-[[maybe_unused]] bool anyImpact(const WorldModel& model, WorldData& data, double h, const std::vector<BodyState>& Y,
-                                bool forResponse = false) {
-#if RIGID_WITH_COLLISIONS
-  // Only bouncing impacts are located (anyBouncingImpact) and restitutions combine by
-  // geometric mean, so with no body of xi > 0 that meets something (a pile of
-  // inelastic cubes) there is nothing to detect here.
-  const bool bouncy = std::any_of(model.bodies.begin(), model.bodies.end(), [&](const BodyConstants& b) {
-    return (b.collides || !model.surfaces.empty()) && b.restitution > 0.0;
-  });
-  if (CollisionCache* c = data.collision.get(); c && (bouncy || forResponse)) {
-    if (forResponse)
-      detectForResponse(data, Y);
-    else
-      c->detector.detect(Y, 0.0, c->contacts, profileOf(data), 0.0);
-    return bouncy && anyBouncingImpact(model, c->contacts, Y, restingNormalSpeed(model.gravity, h));
+// One internal step's context, passed down the stages.
+struct StepContext {
+  const WorldModel& model;
+  WorldData& data;
+  double h;     // s, the internal step
+  bool bouncy;  // some body of xi > 0 meets something: impacts are located
+};
+
+// The contacts of Y into the collision cache: pairs closer than `margin` too.
+void detectContacts(StepContext& s, const std::vector<BodyState>& Y, double margin) {
+  if constexpr (modules::kCollisions) {
+    if (CollisionCache* c = s.data.collision.get())
+      c->detector.detect(Y, margin, c->contacts, profileOf(s.data), margin);
   }
-#endif
-  (void)model, (void)data, (void)h, (void)Y, (void)forResponse;
+}
+
+// Whether the contacts in the collision cache (detected for Y) hold a bouncing impact.
+bool bouncingImpact(StepContext& s, const std::vector<BodyState>& Y) {
+  if constexpr (modules::kCollisions) {
+    if (const CollisionCache* c = s.data.collision.get())
+      return anyBouncingImpact(s.model, c->contacts, Y, restingNormalSpeed(s.model.gravity, s.h));
+  }
   return false;
+}
+
+// Whether some body strikes a surface or another body in Y (detected afresh). Only
+// bouncing impacts are located; restitutions combine by geometric mean, so without a
+// bouncy body (a pile of inelastic cubes) there is nothing to detect.
+bool impactIn(StepContext& s, const std::vector<BodyState>& Y) {
+  if (!s.bouncy) return false;
+  detectContacts(s, Y, 0.0);
+  return bouncingImpact(s, Y);
 }
 
 // The instant of the first impact within (0, tau], by bisection on re-integrations
 // from the start of the step, to 1e-15 of the step: the bounce then happens where
 // and when it should, whatever the step size. Leaves next = Y at that instant (just
 // before the penetration) and returns it.
-[[maybe_unused]] double locateImpact(const WorldModel& model, WorldData& data, double h, double tau,
-                    std::vector<BodyState>& next) {
+double locateImpact(StepContext& s, double tau, std::vector<BodyState>& next) {
   double lo = 0.0, hi = tau;
   while (hi - lo > 1e-15 * tau) {
     const double mid = 0.5 * (lo + hi);
-    advance(model, data, mid, next);
-    (anyImpact(model, data, h, next) ? hi : lo) = mid;
+    advance(s.model, s.data, mid, next);
+    (impactIn(s, next) ? hi : lo) = mid;
   }
-  advance(model, data, lo, next);
+  advance(s.model, s.data, lo, next);
   return lo;
+}
+
+// Contact response: what happens at an instant rather than over the step. Every
+// contact in the collision cache (detected for `after`), body-body and body-surface,
+// in one solve: manifolds, warm start, impulses, positions, store (contact_solver.h).
+void respondToContacts(StepContext& s, std::vector<BodyState>& after) {
+  std::fill(s.data.contacts.begin(), s.data.contacts.end(), 0);
+  if constexpr (modules::kCollisions) {
+    CollisionCache* c = s.data.collision.get();
+    if (!c) return;
+    Stopwatch response(slotOf(s.data, &StepProfile::response));
+    const ContactStep step{s.h, restingNormalSpeed(s.model.gravity, s.h), constantForceDisplacement(s.model.method)};
+    const ContactSolveReport report =
+        solveContacts(s.model, c->contacts, step, s.data.contactMemory, after, s.data.contacts, c->solver);
+    if (s.data.profiling) {
+      ++s.data.profile.solves;
+      s.data.profile.iterations += report.iterations;
+    }
+  } else {
+    (void)after;
+  }
 }
 
 // The energy audit: a body whose angular momentum the step left bitwise unchanged had
@@ -291,11 +285,7 @@ StepResult commit(const WorldModel& model, WorldData& data, std::vector<BodyStat
 // overlap can be stepped over. Bodies far from everything cost nothing. Motion within
 // the step is bounded by the velocities at its start.
 int collisionSubsteps(const WorldModel& model, const WorldData& data, double h) {
-#if !RIGID_WITH_COLLISIONS
-  (void)model, (void)data, (void)h;
-  return 1;
-#else
-  const CollisionCache* c = data.collision.get();
+  const CollisionCache* c = modules::kCollisions ? data.collision.get() : nullptr;
   if (!c) return 1;
   const size_t n = data.Y.size();
   std::vector<double>& travel = data.collision->travel;
@@ -331,48 +321,47 @@ int collisionSubsteps(const WorldModel& model, const WorldData& data, double h) 
   }
   constexpr double kMaxSubsteps = 100000;
   return static_cast<int>(std::min(kMaxSubsteps, substeps));
-#endif
 }
 
-// One step of length h: impacts split it.
-StepResult stepOnce(const WorldModel& model, WorldData& data, double h) {
-  std::vector<BodyState>& next = data.scratch.next;
-#if !RIGID_WITH_COLLISIONS
-  // Nothing to touch: the integrator alone.
-  const int steps = advance(model, data, h, next);
-  if (steps == 0) return failed(-1);
-  data.steps += steps;
-  return commit(model, data, next, h);
-#else
-  // Impacts split the step: integrate to the instant of impact, answer it, go on.
+// One internal step, as its stages: forces and integration (advance), contact
+// detection, the instant of a bouncing impact when the step holds one (the step is
+// then split there), the contact solve, and the new state's checks (commit).
+StepResult stepOnce(StepContext& s) {
+  std::vector<BodyState>& next = s.data.scratch.next;
+  if constexpr (!modules::kCollisions) {  // nothing to touch: the integrator alone
+    const int steps = advance(s.model, s.data, s.h, next);
+    if (steps == 0) return failed(-1);
+    s.data.steps += steps;
+    return commit(s.model, s.data, next, s.h);
+  }
   constexpr int kMaxImpactsPerStep = 16;
   double done = 0.0;
   for (int impacts = 0;; ++impacts) {
-    const double rest = h - done;
-    const int steps = advance(model, data, rest, next);
+    const double rest = s.h - done;
+    const int steps = advance(s.model, s.data, rest, next);
     if (steps == 0) return failed(-1);
     // Out of range: refused before contact detection ever sees it.
     if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);
     double taken = rest;
-    // The end state's contacts are detected once, for the impact check and (when no
-    // impact splits the step) for the response.
-    bool detected = false;
-    if (impacts < kMaxImpactsPerStep) {
-      if (anyImpact(model, data, h, next, true)) {
-        if (!anyImpact(model, data, h, data.Y)) taken = locateImpact(model, data, h, rest, next);
-      } else {
-        detected = true;
-      }
+    detectContacts(s, next, kSpeculativeMargin);
+    if (impacts < kMaxImpactsPerStep && s.bouncy && bouncingImpact(s, next)) {
+      if (!impactIn(s, s.data.Y)) taken = locateImpact(s, rest, next);
+      detectContacts(s, next, kSpeculativeMargin);  // the cache held other states' contacts
     }
-    respondToContacts(model, data, h, next, detected);
-    if (const StepResult r = commit(model, data, next, h); !r.ok) return r;
-    data.steps += steps;
+    respondToContacts(s, next);
+    if (const StepResult r = commit(s.model, s.data, next, s.h); !r.ok) return r;
+    s.data.steps += steps;
     done += taken;
     if (taken == rest || impacts >= kMaxImpactsPerStep) return {};
   }
-#endif
 }
 
+// Whether some body of xi > 0 meets something (another colliding body or a surface).
+bool bouncyWorld(const WorldModel& model) {
+  return std::any_of(model.bodies.begin(), model.bodies.end(), [&](const BodyConstants& b) {
+    return (b.collides || !model.surfaces.empty()) && b.restitution > 0.0;
+  });
+}
 
 // Explicit fixed-step methods outside their stability region sub-step: the step is
 // split so that h |omega|, h times the drag rate and h times the heave frequency of
@@ -402,17 +391,15 @@ void stabilitySubsteps(const WorldModel& model, const WorldData& data, double h,
   double spin2 = 0.0;
   for (const BodyAux& aux : data.aux) spin2 = std::max(spin2, aux.omega.squaredNorm());
   consider(std::sqrt(spin2), limits.spin, "spin");
-#if RIGID_WITH_MEDIA
-  for (size_t i = 0; i < data.Y.size(); ++i) {
-    for (const Medium& medium : model.media) {
-      const MediumRates rates = mediumRates(medium, model.bodies[i], data.Y[i], data.aux[i], model.gravity);
-      consider(rates.damping, limits.damping, "drag");
-      consider(rates.oscillation, limits.oscillation, "buoyancy heave");
+  if constexpr (modules::kMedia) {
+    for (size_t i = 0; i < data.Y.size(); ++i) {
+      for (const Medium& medium : model.media) {
+        const MediumRates rates = mediumRates(medium, model.bodies[i], data.Y[i], data.aux[i], model.gravity);
+        consider(rates.damping, limits.damping, "drag");
+        consider(rates.oscillation, limits.oscillation, "buoyancy heave");
+      }
     }
   }
-#else
-  (void)model;
-#endif
 }
 
 }  // namespace
@@ -435,8 +422,9 @@ StepResult step(const WorldModel& model, WorldData& data, double h) {
     return plan;
   }
   if (data.profiling) data.profile.steps += plan.substeps;
+  StepContext context{model, data, h / static_cast<double>(plan.substeps), bouncyWorld(model)};
   for (long k = 0; k < plan.substeps; ++k) {
-    StepResult r = stepOnce(model, data, h / static_cast<double>(plan.substeps));
+    StepResult r = stepOnce(context);
     if (!r.ok) return r;
   }
   return plan;

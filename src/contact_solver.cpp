@@ -412,7 +412,7 @@ double solveRow(Solver& s, Row& r, std::vector<BodyState>& Y) {
   return change;
 }
 
-// ---- normal block ----------------------------------------------------------------
+// ---- block solve of small islands ---------------------------------------------------
 
 // Velocity of row i along its axis x per unit impulse of row j along its axis y: an
 // entry of the Delassus matrix, from the bodies the two rows share.
@@ -470,19 +470,21 @@ bool projectFriction(Solver& s, const std::vector<size_t>& rows, std::vector<Bod
 
 // The impulses of `rows` solved together, exactly: lambda_n >= 0 with v_n = target
 // wherever lambda_n > 0 and, withFriction, the slip stopped at every sticking point
-// whose friction stays inside its disc (else the friction is held as it is). An active set: rows that would pull are dropped, points whose
-// friction would leave the disc are projected onto it and held there, and the rest is
-// solved again. Sliding points keep their kinetic friction as the passes made it. A
-// face's four points are redundant (one normal and one twist too many), so the matrix
-// is made regular by 1e-9 of its diagonal: near the least-norm impulses, the load
-// shared evenly.
+// whose friction stays inside its disc (else the friction is held as it is). An active
+// set: rows that would pull are dropped, points whose friction would leave the disc are
+// projected onto it and held there, and the rest is solved again. Sliding points keep
+// their kinetic friction as the passes made it; speculative points are left to the
+// passes (their targets, gap / h, need not agree with a touching point's 0 on the same
+// pair, and the least-squares answer to that would be huge). A face's four points are
+// redundant (one normal and one twist too many), so the matrix is made regular by 1e-9
+// of its diagonal: near the least-norm impulses, the load shared evenly.
 void solveBlock(Solver& s, const std::vector<size_t>& rows, bool withFriction, std::vector<BodyState>& Y) {
   std::vector<size_t>& active = s.active;
   active.clear();
   for (size_t i : rows) {
     Row& r = s.rows[i];
     r.held = r.sliding || !withFriction;
-    if (r.depth < -kTouching) continue;  // speculative: left to the passes
+    if (r.depth < -kTouching) continue;
     if (r.lambdaN > 0.0 || relativeVelocity(s, r, r.n) < r.target) active.push_back(i);
   }
   std::vector<std::pair<size_t, int>>& unknowns = s.unknowns;
@@ -521,6 +523,7 @@ void solveBlock(Solver& s, const std::vector<size_t>& rows, bool withFriction, s
   }
 }
 
+// The root of body i's island (union-find, halving the paths it walks).
 int islandOf(std::vector<int>& parent, int i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;

@@ -419,9 +419,9 @@ struct CollisionDetector::Impl {
     }
   };
 
-  int nBodySlots = 0;                 // slots [0, nBodySlots): colliding bodies; then surfaces
+  int nBodySlots = 0;                 // slots [0, nBodySlots): bodies that meet something; then surfaces
   std::vector<int> slotIndex;         // slot -> body or surface index
-  std::vector<int> bodySlot;          // body index -> slot, -1 when it does not collide
+  std::vector<int> bodySlot;          // body index -> slot, -1 when it meets nothing
   std::vector<char> meetsBodies;      // per body slot: pairs with other bodies too, not only surfaces
   std::vector<Geo> geo;               // per slot
   std::vector<Vec3> surfaceHalfAabb;  // per surface: half extents of its world AABB

@@ -125,9 +125,9 @@ void normaliseOrientations(std::vector<BodyState>& Y) {
 // Pairs apart by less than this (m) are detected too, speculatively: an inelastic one
 // takes the impulse that keeps it from closing more than its gap in the next step, and
 // a box falling flat meets the floor with its far corners too. (4 mm: a cube falling
-// at 2 m/s closes 4 mm in a 2 ms step; 2 mm and 6 mm both cost more on the pile of
-// 1000, docs/performance.md.)
+// at 2 m/s closes 4 mm in a 2 ms step; faster bodies widen it, speculativeMargin.)
 constexpr double kSpeculativeMargin = 4e-3;
+
 // A state the physics can still answer: finite, and positions within 1e12 m of the
 // origin (collision detection's geometry fails far beyond, and no scene is that big).
 constexpr double kMaxDistance = 1e12;  // m
@@ -323,6 +323,25 @@ int collisionSubsteps(const WorldModel& model, const WorldData& data, double h) 
   return static_cast<int>(std::min(kMaxSubsteps, substeps));
 }
 
+// The speculative distance for the contacts of Y: at least kSpeculativeMargin, and
+// what two of the fastest bodies can close in the next step, so that a cube falling
+// at 5 m/s (1 cm a 2 ms step) is caught as it lands instead of sinking in and being
+// pushed out. At most kMaxSpeculativeMargin: faster bodies are sub-stepped.
+double speculativeMargin(const StepContext& s, const std::vector<BodyState>& Y) {
+  constexpr double kMaxSpeculativeMargin = 0.05;  // m
+  const CollisionCache* c = modules::kCollisions ? s.data.collision.get() : nullptr;
+  if (!c) return kSpeculativeMargin;
+  double fastest = 0.0;  // m/s, the largest speed of a point of a body that meets something
+  for (size_t i = 0; i < Y.size(); ++i) {
+    if (!(c->boundingRadius[i] > 0.0)) continue;
+    const BodyConstants& b = s.model.bodies[i];
+    const Mat3 R = Y[i].q.toRotationMatrix();
+    const Vec3 omega = R * (b.IbodyInv * (R.transpose() * Y[i].L));
+    fastest = std::max(fastest, Y[i].P.norm() / b.mass + omega.norm() * c->boundingRadius[i]);
+  }
+  return std::clamp(2.0 * fastest * s.h, kSpeculativeMargin, kMaxSpeculativeMargin);
+}
+
 // One internal step, as its stages: forces and integration (advance), contact
 // detection, the instant of a bouncing impact when the step holds one (the step is
 // then split there), the contact solve, and the new state's checks (commit).
@@ -343,10 +362,10 @@ StepResult stepOnce(StepContext& s) {
     // Out of range: refused before contact detection ever sees it.
     if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);
     double taken = rest;
-    detectContacts(s, next, kSpeculativeMargin);
+    detectContacts(s, next, speculativeMargin(s, next));
     if (impacts < kMaxImpactsPerStep && s.bouncy && bouncingImpact(s, next)) {
       if (!impactIn(s, s.data.Y)) taken = locateImpact(s, rest, next);
-      detectContacts(s, next, kSpeculativeMargin);  // the cache held other states' contacts
+      detectContacts(s, next, speculativeMargin(s, next));  // the cache held other states' contacts
     }
     respondToContacts(s, next);
     if (const StepResult r = commit(s.model, s.data, next, s.h); !r.ok) return r;

@@ -469,21 +469,20 @@ bool projectFriction(Solver& s, const std::vector<size_t>& rows, std::vector<Bod
 }
 
 // The impulses of `rows` solved together, exactly: lambda_n >= 0 with v_n = target
-// wherever lambda_n > 0 and, withFriction, the slip stopped at every sticking point
-// whose friction stays inside its disc (else the friction is held as it is). An active
-// set: rows that would pull are dropped, points whose friction would leave the disc are
+// wherever lambda_n > 0, and the slip stopped at every sticking point whose friction
+// stays inside its disc. An active set: rows that would pull are dropped, points whose friction would leave the disc are
 // projected onto it and held there, and the rest is solved again. Sliding points keep
 // their kinetic friction as the passes made it; speculative points are left to the
 // passes (their targets, gap / h, need not agree with a touching point's 0 on the same
 // pair, and the least-squares answer to that would be huge). A face's four points are
 // redundant (one normal and one twist too many), so the matrix is made regular by 1e-9
 // of its diagonal: near the least-norm impulses, the load shared evenly.
-void solveBlock(Solver& s, const std::vector<size_t>& rows, bool withFriction, std::vector<BodyState>& Y) {
+void solveBlock(Solver& s, const std::vector<size_t>& rows, std::vector<BodyState>& Y) {
   std::vector<size_t>& active = s.active;
   active.clear();
   for (size_t i : rows) {
     Row& r = s.rows[i];
-    r.held = r.sliding || !withFriction;
+    r.held = r.sliding;
     if (r.depth < -kTouching) continue;
     if (r.lambdaN > 0.0 || relativeVelocity(s, r, r.n) < r.target) active.push_back(i);
   }
@@ -544,10 +543,9 @@ double massRatio(const Solver& s, const std::vector<size_t>& order, size_t begin
   return lightest / heaviest;
 }
 
-// Every island of at most kMaxBlockRows rows that the passes have not settled has its
-// normal impulses solved at once, and its friction too where its masses differ by
-// kBlockMassRatio or more (solveBlock). Its bodies' versions change, so that its rows
-// are solved again.
+// Every island of at most kMaxBlockRows rows that the passes have not settled and whose
+// masses differ by kBlockMassRatio or more has its impulses solved at once
+// (solveBlock). Its bodies' versions change, so that its rows are solved again.
 void solveIslands(Solver& s, std::vector<BodyState>& Y) {
   const int statics = s.staticSlot();
   std::vector<size_t>& order = s.islandRows;
@@ -567,9 +565,10 @@ void solveIslands(Solver& s, std::vector<BodyState>& Y) {
     while (end < order.size() && parent[s.rows[order[end]].a] == parent[s.rows[order[begin]].a]) ++end;
     const bool unsettled = std::any_of(order.begin() + begin, order.begin() + end,
                                        [&](size_t i) { return !s.rows[i].settled; });
-    if (unsettled && end - begin <= static_cast<size_t>(kMaxBlockRows)) {
+    if (unsettled && end - begin <= static_cast<size_t>(kMaxBlockRows) &&
+        massRatio(s, order, begin, end) >= kBlockMassRatio) {
       rows.assign(order.begin() + begin, order.begin() + end);
-      solveBlock(s, rows, massRatio(s, order, begin, end) >= kBlockMassRatio, Y);
+      solveBlock(s, rows, Y);
       for (size_t i : rows) ++s.bodies[s.rows[i].a].version, ++s.bodies[s.rows[i].b].version;
     }
     begin = end;

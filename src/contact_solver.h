@@ -44,12 +44,13 @@ namespace contact_solver {
 constexpr int kMaxVelocityIterations = 60;   // cap of the Gauss-Seidel passes
 constexpr double kVelocityTolerance = 1e-5;  // m/s: stop when no impulse changes a velocity more
 // After this many passes without convergence, an island (bodies joined by rows) of at
-// most kMaxBlockRows points also has its normal impulses solved at once, exactly, and
-// its friction too where its masses differ by kBlockMassRatio or more (a heavy box on a
-// light one: Gauss-Seidel passes the load down at a rate of the mass ratio per pass,
-// and 1e6 does not converge in any number of passes). The friction of like masses is
-// left to the passes, which hold a box on a ramp near its limit where the block's
-// least-norm friction overshoots a corner's disc.
+// most kMaxBlockRows points whose masses differ by kBlockMassRatio or more also has its
+// impulses solved at once, exactly (a heavy box on a light one: Gauss-Seidel passes the
+// load down at a rate of the mass ratio per pass, and 1e6 does not converge in any
+// number of passes). Islands of like masses are left to the passes: they converge, they
+// hold a box on a ramp near its limit where the block's least-norm friction overshoots
+// a corner's disc, and a block for every small island of a falling pile of 100 made its
+// fall 3.5x dearer.
 constexpr int kBlockAfter = 8;
 constexpr int kMaxBlockRows = 32;
 constexpr double kBlockMassRatio = 100.0;

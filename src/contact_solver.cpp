@@ -85,6 +85,9 @@ struct ContactScratch {
   std::vector<size_t> block;       // solveIslands: one island's rows
   std::vector<size_t> active;      // solveBlock: the rows whose impulses are solved
   std::vector<std::pair<size_t, int>> unknowns;  // solveBlock: (row, axis) of each unknown
+  Eigen::MatrixXd K, regular;      // solveBlock: its matrix, and that matrix made regular
+  Eigen::VectorXd residual, delta; // solveBlock: velocity errors, impulse changes
+  Eigen::LDLT<Eigen::MatrixXd> factors;  // solveBlock: of `regular`
   int staticSlot() const { return static_cast<int>(bodies.size()) - 1; }
 };
 
@@ -495,16 +498,19 @@ void solveBlock(Solver& s, const std::vector<size_t>& rows, std::vector<BodyStat
     for (size_t i : active)
       for (int axis = 0; axis < (s.rows[i].held ? 1 : 3); ++axis) unknowns.emplace_back(i, axis);
     const Eigen::Index n = static_cast<Eigen::Index>(unknowns.size());
-    Eigen::MatrixXd K(n, n);
-    Eigen::VectorXd residual(n);
+    Eigen::MatrixXd& K = s.K;
+    Eigen::VectorXd& residual = s.residual;
+    Eigen::VectorXd& delta = s.delta;
+    K.resize(n, n);
+    residual.resize(n);
     assembleBlock(s, unknowns, K, residual);
     // regularised, then refined twice against the exact matrix: the regularisation's
     // own error (1e-9 of a 1e6 kg box's load) would otherwise be left in the velocities
-    Eigen::MatrixXd regular = K;
-    regular.diagonal() *= 1.0 + 1e-9;
-    const Eigen::LDLT<Eigen::MatrixXd> factors(regular);
-    Eigen::VectorXd delta = factors.solve(-residual);
-    for (int refine = 0; refine < 2; ++refine) delta += factors.solve(-(residual + K * delta));
+    s.regular = K;
+    s.regular.diagonal() *= 1.0 + 1e-9;
+    s.factors.compute(s.regular);
+    delta = s.factors.solve(-residual);
+    for (int refine = 0; refine < 2; ++refine) delta += s.factors.solve(-(residual + K * delta));
     if (!delta.allFinite()) return;
     for (Eigen::Index p = 0; p < n; ++p) {
       Row& r = s.rows[unknowns[p].first];

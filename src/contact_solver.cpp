@@ -80,9 +80,10 @@ struct ContactScratch {
   std::vector<size_t> deep;        // rows overlapping by more than the slop
   std::vector<double> moveScale;   // limitMoves: each body's share of the solve's move
   std::vector<char> used;          // warmStart: memory points already matched
-  std::vector<int> island;         // solveIslands: each body's island (union-find)
-  std::vector<size_t> islandRows;  // solveIslands: rows grouped by island
-  std::vector<size_t> block;       // solveIslands: one island's rows
+  std::vector<int> island;         // findBlockIslands: each body's island (union-find)
+  std::vector<size_t> islandRows;  // findBlockIslands: rows grouped by island
+  std::vector<std::pair<size_t, size_t>> blocks;  // findBlockIslands: islands for solveBlock
+  std::vector<size_t> block;       // solveBlockIslands: one island's rows
   std::vector<size_t> active;      // solveBlock: the rows whose impulses are solved
   std::vector<std::pair<size_t, int>> unknowns;  // solveBlock: (row, axis) of each unknown
   Eigen::MatrixXd K, regular;      // solveBlock: its matrix, and that matrix made regular
@@ -549,14 +550,17 @@ double massRatio(const Solver& s, const std::vector<size_t>& order, size_t begin
   return lightest / heaviest;
 }
 
-// Every island of at most kMaxBlockRows rows that the passes have not settled and whose
-// masses differ by kBlockMassRatio or more has its impulses solved at once
-// (solveBlock). Its bodies' versions change, so that its rows are solved again.
-void solveIslands(Solver& s, std::vector<BodyState>& Y) {
+// The islands (bodies joined by rows) that the block solve may take: at most
+// kMaxBlockRows rows whose masses differ by kBlockMassRatio or more. Their rows go to
+// s.islandRows, island after island, and each island's [begin, end) to s.blocks. Rows
+// do not change within a solve, so this is found once, at the first pass that wants it.
+void findBlockIslands(Solver& s) {
   const int statics = s.staticSlot();
   std::vector<size_t>& order = s.islandRows;
   order.resize(s.rows.size());
   std::iota(order.begin(), order.end(), size_t{0});
+  s.blocks.clear();
+  if (massRatio(s, order, 0, order.size()) < kBlockMassRatio) return;  // like masses: none
   std::vector<int>& parent = s.island;
   parent.resize(s.bodies.size());
   std::iota(parent.begin(), parent.end(), 0);
@@ -565,19 +569,29 @@ void solveIslands(Solver& s, std::vector<BodyState>& Y) {
   for (int& p : parent) p = islandOf(parent, p);
   std::stable_sort(order.begin(), order.end(),
                    [&](size_t x, size_t y) { return parent[s.rows[x].a] < parent[s.rows[y].a]; });
-  std::vector<size_t>& rows = s.block;
   for (size_t begin = 0; begin < order.size();) {
     size_t end = begin;
     while (end < order.size() && parent[s.rows[order[end]].a] == parent[s.rows[order[begin]].a]) ++end;
-    const bool unsettled = std::any_of(order.begin() + begin, order.begin() + end,
-                                       [&](size_t i) { return !s.rows[i].settled; });
-    if (unsettled && end - begin <= static_cast<size_t>(kMaxBlockRows) &&
-        massRatio(s, order, begin, end) >= kBlockMassRatio) {
-      rows.assign(order.begin() + begin, order.begin() + end);
-      solveBlock(s, rows, Y);
-      for (size_t i : rows) ++s.bodies[s.rows[i].a].version, ++s.bodies[s.rows[i].b].version;
-    }
+    if (end - begin <= static_cast<size_t>(kMaxBlockRows) && massRatio(s, order, begin, end) >= kBlockMassRatio)
+      s.blocks.emplace_back(begin, end);
     begin = end;
+  }
+}
+
+// Every island of findBlockIslands that the passes have not settled has its impulses
+// solved at once (solveBlock). Its bodies' versions change, so that its rows are
+// solved again.
+void solveBlockIslands(Solver& s, std::vector<BodyState>& Y) {
+  const std::vector<size_t>& order = s.islandRows;
+  std::vector<size_t>& rows = s.block;
+  for (const auto& [begin, end] : s.blocks) {
+    const bool unsettled = std::any_of(order.begin() + static_cast<std::ptrdiff_t>(begin),
+                                       order.begin() + static_cast<std::ptrdiff_t>(end),
+                                       [&](size_t i) { return !s.rows[i].settled; });
+    if (!unsettled) continue;
+    rows.assign(order.begin() + static_cast<std::ptrdiff_t>(begin), order.begin() + static_cast<std::ptrdiff_t>(end));
+    solveBlock(s, rows, Y);
+    for (size_t i : rows) ++s.bodies[s.rows[i].a].version, ++s.bodies[s.rows[i].b].version;
   }
 }
 
@@ -596,11 +610,22 @@ void solveVelocities(Solver& s, std::vector<BodyState>& Y, ContactSolveReport& r
     ++report.iterations;
     report.residual = change;
     if (change <= kVelocityTolerance) break;
-    if (report.iterations >= kBlockAfter) solveIslands(s, Y);
+    if (report.iterations < kBlockAfter) continue;
+    if (report.iterations == kBlockAfter) findBlockIslands(s);
+    solveBlockIslands(s, Y);
   }
 }
 
 // ---- positions -------------------------------------------------------------------
+
+// The change of a row's normal velocity since markVelocities, each body's share of it
+// scaled by sa and sb (limitMoves' move scales).
+double normalChange(const Solver& s, const Row& r, double sa, double sb) {
+  const SolverBody& A = s.bodies[r.a];
+  const SolverBody& B = s.bodies[r.b];
+  return r.n.d.dot(sb * (B.v - B.v0) - sa * (A.v - A.v0)) + sb * r.n.rbXd.dot(B.w - B.w0) -
+         sa * r.n.raXd.dot(A.w - A.w0);
+}
 
 // Split impulse: pseudo-velocities that would remove kBaumgarte of each overlap beyond
 // the slop in one step, solved like the normal impulses (accumulated, >= 0). They are
@@ -612,12 +637,7 @@ void solvePseudoVelocities(Solver& s, double h, double share) {
   s.deep.clear();
   for (size_t i = 0; i < s.rows.size(); ++i) {
     Row& r = s.rows[i];
-    const SolverBody& A = s.bodies[r.a];
-    const SolverBody& B = s.bodies[r.b];
-    const double sa = s.moveScale[r.a], sb = s.moveScale[r.b];
-    const double solved = r.n.d.dot(sb * (B.v - B.v0) - sa * (A.v - A.v0)) + sb * r.n.rbXd.dot(B.w - B.w0) -
-                          sa * r.n.raXd.dot(A.w - A.w0);
-    const double depth = r.depth - share * h * solved;
+    const double depth = r.depth - share * h * normalChange(s, r, s.moveScale[r.a], s.moveScale[r.b]);
     if (depth <= kSlop) continue;
     r.pushOut = std::min(kBaumgarte * (depth - kSlop) / h, kMaxPushOut);
     s.deep.push_back(i);
@@ -654,9 +674,7 @@ void solvePseudoVelocities(Solver& s, double h, double share) {
 void limitMoves(Solver& s, const ContactStep& step) {
   s.moveScale.assign(s.bodies.size(), 1.0);
   for (const Row& r : s.rows) {
-    const SolverBody& A = s.bodies[r.a];
-    const SolverBody& B = s.bodies[r.b];
-    const double solved = r.n.d.dot(B.v - B.v0 - A.v + A.v0) + r.n.rbXd.dot(B.w - B.w0) - r.n.raXd.dot(A.w - A.w0);
+    const double solved = normalChange(s, r, 1.0, 1.0);
     if (!(solved > step.restingSpeed)) continue;
     const double opening = step.moveShare * step.h * solved, allowed = std::max(r.depth, 0.0);
     if (!(opening > allowed)) continue;

@@ -10,7 +10,10 @@
 //     (pile_manifold_<N>.json), 3 s of simulated time per iteration: the CPU time of
 //     the first second (falling) and of the third (at rest, after 2 s), each split into
 //     the stages' wall times with the solver's velocity iterations and solves; the
-//     deepest overlap in the output state, the fastest body's speed at 1 s and 3 s.
+//     deepest overlap in the output state, the fastest body's speed at 1 s and 3 s, and
+//     the bodies asleep at 3 s (sleep.h; the scene's default rules).
+//   BM_PileAwake/<N>: BM_PileManifold with sleep off (solver.sleep false): the solver
+//     alone, every body awake to the end.
 #include <benchmark/benchmark.h>
 #include <time.h>  // clock_gettime, CLOCK_THREAD_CPUTIME_ID (POSIX)
 
@@ -212,13 +215,14 @@ void windowCounters(benchmark::State& state, const std::string& name, const Wind
 // step by step with this thread's CPU clock, the probes outside it; the State's own
 // timed region is the first second (as BM_Pile's), so the console's CPU column reads
 // like BM_Pile's, but the report takes the windows' counters.
-void pileManifold(benchmark::State& state, int n) {
-  const rigid::Scene scene = load("pile_manifold_" + std::to_string(n) + ".json");
+void pileManifold(benchmark::State& state, int n, bool sleep) {
+  rigid::Scene scene = load("pile_manifold_" + std::to_string(n) + ".json");
+  scene.model.sleep.enabled = sleep;
   const double h = scene.model.maxStep;
   const int perSecond = static_cast<int>(1.0 / h + 0.5);
   const int steps = 3 * perSecond;
   Window fall, rest;
-  double deepest = 0.0, deepestAtRest = 0.0, fastest1 = 0.0, fastest3 = 0.0;
+  double deepest = 0.0, deepestAtRest = 0.0, fastest1 = 0.0, fastest3 = 0.0, asleep3 = 0.0;
   long ok = 0;
   rigid::CollisionDetector probe(scene.model, std::vector<bool>(scene.model.bodies.size(), true));
   std::vector<rigid::Contact> probed;
@@ -251,7 +255,7 @@ void pileManifold(benchmark::State& state, int n) {
       deepest = std::max(deepest, overlap);
       if (window == &rest) deepestAtRest = std::max(deepestAtRest, overlap);
       if (k + 1 == perSecond) fastest1 = std::max(fastest1, fastest(data));
-      if (k + 1 == steps) fastest3 = std::max(fastest3, fastest(data));
+      if (k + 1 == steps) fastest3 = std::max(fastest3, fastest(data)), asleep3 = data.sleep.sleeping;
       if (k + 1 < perSecond) state.ResumeTiming(), timing = true;
     }
     if (!timing) state.ResumeTiming();
@@ -265,6 +269,7 @@ void pileManifold(benchmark::State& state, int n) {
   state.counters["max_overlap_rest_m"] = deepestAtRest;
   state.counters["max_speed_1s_mps"] = fastest1;
   state.counters["max_speed_3s_mps"] = fastest3;
+  state.counters["asleep_3s"] = asleep3;
 }
 
 }  // namespace
@@ -286,9 +291,11 @@ int main(int argc, char** argv) {
         ->Unit(benchmark::kMillisecond)
         ->Iterations(1);
   for (int n : {10, 100, 1000})
-    benchmark::RegisterBenchmark(("BM_PileManifold/" + std::to_string(n)).c_str(), pileManifold, n)
-        ->Unit(benchmark::kMillisecond)
-        ->Iterations(1);
+    for (bool sleep : {true, false})
+      benchmark::RegisterBenchmark(((sleep ? "BM_PileManifold/" : "BM_PileAwake/") + std::to_string(n)).c_str(),
+                                   pileManifold, n, sleep)
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(1);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

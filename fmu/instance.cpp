@@ -220,8 +220,13 @@ fmi2Status Instance::write(const Variable& v, double value) {
       writeValue(v, value, model_, data_, setupPhase() ? Phase::Setup : Phase::Running);
   if (!why.empty()) return error(why);
   // A change of tunable parameter between steps moves the auxiliaries' inputs only;
-  // mass-dependent outputs are refreshed so that a Get sees the new values.
-  if (!setupPhase()) rigid::refreshAuxiliaries(model_, data_);
+  // mass-dependent outputs are refreshed so that a Get sees the new values. Sleeping
+  // islands wake: their rest was under the old parameters (an input wakes its body
+  // at the next step by itself).
+  if (!setupPhase()) {
+    rigid::refreshAuxiliaries(model_, data_);
+    if (v.causality == Causality::Parameter) rigid::wakeAll(data_.sleep);
+  }
   return fmi2OK;
 }
 

@@ -1,5 +1,6 @@
 #include "snapshot.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -97,6 +98,8 @@ std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
     w.put(s.data.inputRate[i].force), w.put(s.data.inputRate[i].torque);
     w.put(static_cast<int32_t>(s.data.contacts[i]));
     w.put(s.data.audit.energy[i]), w.put(s.data.audit.reference[i]), w.put(s.data.audit.carried[i]);
+    w.put(static_cast<uint8_t>(s.data.sleep.asleep[i])), w.put(s.data.sleep.stillFor[i]);
+    w.put(static_cast<int32_t>(s.data.sleep.island[i]));
   }
   w.put(static_cast<int64_t>(s.data.steps));
   w.put(s.data.errorEstimate);
@@ -141,13 +144,21 @@ std::string deserialize(const char* bytes, size_t size, const std::string& guid,
   }
   for (uint32_t i = 0; i < n && ok; ++i) {
     rigid::BodyState& y = out.data.Y[i];
-    int32_t contacts = 0;
+    int32_t contacts = 0, island = 0;
+    uint8_t asleep = 0;
     ok = r.get(y.X) && r.get(y.q) && r.get(y.P) && r.get(y.L) && r.get(out.data.input[i].force) &&
          r.get(out.data.input[i].torque) && r.get(out.data.inputRate[i].force) &&
          r.get(out.data.inputRate[i].torque) && r.get(contacts) &&
-         r.get(out.data.audit.energy[i]) && r.get(out.data.audit.reference[i]) && r.get(out.data.audit.carried[i]);
+         r.get(out.data.audit.energy[i]) && r.get(out.data.audit.reference[i]) && r.get(out.data.audit.carried[i]) &&
+         r.get(asleep) && r.get(out.data.sleep.stillFor[i]) && r.get(island);
     out.data.contacts[i] = contacts;
+    if (ok && (asleep > 1 || island < -1 || island >= static_cast<int32_t>(n) || (asleep == 1) != (island >= 0)))
+      return "the serialized state is corrupt (sleep of body " + std::to_string(i) + ")";
+    out.data.sleep.asleep[i] = static_cast<char>(asleep);
+    out.data.sleep.island[i] = island;
   }
+  out.data.sleep.sleeping =
+      static_cast<int>(std::count(out.data.sleep.asleep.begin(), out.data.sleep.asleep.end(), 1));
   int64_t steps = 0;
   ok = ok && r.get(steps) && r.get(out.data.errorEstimate) && r.get(out.data.scratch.adaptiveStep);
   if (std::string why = readContactMemory(r, out, ok); !why.empty()) return why;

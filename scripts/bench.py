@@ -95,6 +95,8 @@ def run_core(build, scenes, quick, pattern=None, reps=1):
                 key = ("free", parts[1], int(parts[2]))
             elif parts[0] == "BM_PileManifold":
                 key = ("manifold", int(parts[1]))
+            elif parts[0] == "BM_PileAwake":
+                key = ("awake", int(parts[1]))
             else:
                 key = ("pile", int(parts[1]))
             results[key] = b
@@ -145,7 +147,8 @@ def manifold_figures(b):
     the fastest body's speed at 1 s and 3 s."""
     out = {"steps_ok": b["steps_ok"], "steps": b["steps_planned"],
            "max_overlap_state_m": b["max_overlap_state_m"], "max_overlap_rest_m": b["max_overlap_rest_m"],
-           "max_speed_1s_mps": b["max_speed_1s_mps"], "max_speed_3s_mps": b["max_speed_3s_mps"]}
+           "max_speed_1s_mps": b["max_speed_1s_mps"], "max_speed_3s_mps": b["max_speed_3s_mps"],
+           "asleep_3s": b.get("asleep_3s", 0.0)}
     for w in ("fall", "rest"):
         steps, cpu, wall = b[f"{w}_steps"], b[f"{w}_cpu_s"], b[f"{w}_wall_ns"]
         shares = {s: b[f"{w}_ns_{s}"] / wall if wall > 0 else math.nan for s in STAGES}
@@ -172,8 +175,9 @@ def run_manifold(build, scenes, folder, quick):
     is timed round by round with MuJoCo's at rest, ours once then theirs once, each in
     its own process (as interleaved_pile_ratio does for the first second): its figures
     are the medians over the rounds, so that the rounds are also its repetitions and the
-    slow pile is not run twice. Without MuJoCo, its repetitions alone. Returns
-    ({n: figures}, {n, rounds, ratio} or None)."""
+    slow pile is not run twice. Without MuJoCo, its repetitions alone. Then every pile
+    once with sleep off (BM_PileAwake: the solver alone). Returns ({n: figures},
+    {n, rounds, ratio} or None, {n: figures with sleep off})."""
     counts = bench_scenes.PILE_COUNTS[:2] if quick else bench_scenes.PILE_COUNTS
     big, rounds = counts[-1], 1 if quick else 3
     entries = {}
@@ -200,7 +204,9 @@ def run_manifold(build, scenes, folder, quick):
     else:
         ours, _ = run_core(build, scenes, quick, pattern=f"^BM_PileManifold/{big}/", reps=rounds)
         entries[big] = ours[("manifold", big)]
-    return {n: manifold_figures(entries[n]) for n in sorted(entries)}, interleaved
+    awake, _ = run_core(build, scenes, quick, pattern=f"^BM_PileAwake/({'|'.join(map(str, counts))})/", reps=1)
+    return ({n: manifold_figures(entries[n]) for n in sorted(entries)}, interleaved,
+            {k[1]: manifold_figures(b) for k, b in sorted(awake.items())})
 
 
 # ----------------------------------------------------------------------------------
@@ -429,10 +435,11 @@ def targets(free, piles, peers, interleaved=None):
     return rows
 
 
-def manifold_targets(manifold, peers, interleaved):
+def manifold_targets(manifold, peers, interleaved, awake=None):
     """The manifold solver's targets: its pile of 1000 at rest against MuJoCo's default
     at rest (judged on the interleaved rounds), the overlap in the output state over the
-    3 s, and the growth of a step's time, falling and at rest."""
+    3 s, and the growth of a step's time, falling and at rest; then the same pile with
+    sleep off against the interleaved rounds' MuJoCo figure (the solver alone)."""
     rows = []
     label = "manifold, pile of 1000 at rest (2–3 s): time per simulated second ≤ 0.5x MuJoCo's (Euler, at rest)"
     if interleaved and interleaved["n"] == 1000:
@@ -453,6 +460,17 @@ def manifold_targets(manifold, peers, interleaved):
         pts = {n: m[w]["us_per_step"] for n, m in manifold.items() if math.isfinite(m[w]["us_per_step"])}
         for a, b, s, limit in growth(pts):
             rows.append((f"manifold {name}: growth {a} → {b} no faster than N log N (slope ≤ {limit:.2f})",
+                         f"slope {s:.2f}", "PASS" if s <= limit else "MISS"))
+    if awake and interleaved and interleaved["n"] in awake:
+        n = interleaved["n"]
+        theirs = statistics.median(r["mujoco"] for r in interleaved["rounds"])
+        ratio = awake[n]["rest"]["s_per_simulated_s"] / theirs
+        rows.append((f"sleep off (the solver alone), pile of {n} at rest: ≤ 0.5x MuJoCo's",
+                     f"ratio {ratio:.2f} ({fmt_s(awake[n]['rest']['s_per_simulated_s'])} against the rounds' "
+                     f"median {fmt_s(theirs)}; one run)", "PASS" if ratio <= PILE_RATIO_TARGET else "MISS"))
+        pts = {k: a["rest"]["us_per_step"] for k, a in awake.items() if math.isfinite(a["rest"]["us_per_step"])}
+        for a, b, s, limit in growth(pts):
+            rows.append((f"sleep off, at rest: growth {a} → {b} no faster than N log N (slope ≤ {limit:.2f})",
                          f"slope {s:.2f}", "PASS" if s <= limit else "MISS"))
     return rows
 
@@ -745,8 +763,8 @@ def write_manifold_section(w, r):
     w("| N | falling: per step | falling: per simulated second | at rest: per step | at rest: per "
       "simulated second | BM_Pile per simulated second, falling | iterations per solve, "
       "falling | iterations per solve, at rest | max overlap in the output state, 0–3 s | at rest, "
-      "2–3 s | fastest body at 1 s | fastest body at 3 s |")
-    w("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+      "2–3 s | fastest body at 1 s | fastest body at 3 s | asleep at 3 s |")
+    w("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for n, m in manifold.items():
         f, s = m["fall"], m["rest"]
         old = piles.get(n)
@@ -754,11 +772,26 @@ def write_manifold_section(w, r):
           f"**{fmt_s(s['s_per_simulated_s'])}** | {fmt_s(old['s_per_simulated_s']) if old else '–'} | "
           f"{f['iterations_per_solve']:.1f} | {s['iterations_per_solve']:.1f} | "
           f"{m['max_overlap_state_m'] * 1e3:.2f} mm | {m['max_overlap_rest_m'] * 1e3:.2f} mm | "
-          f"{m['max_speed_1s_mps']:.3g} m/s | {m['max_speed_3s_mps']:.3g} m/s |")
+          f"{m['max_speed_1s_mps']:.3g} m/s | {m['max_speed_3s_mps']:.3g} m/s | {m['asleep_3s']:.0f} of {n} |")
     incomplete = [n for n, m in manifold.items() if m["steps_ok"] < m["steps"]]
     if incomplete:
         w(f"\nA step failed in the manifold piles of {incomplete}: their windows cover the steps before it.")
     w("")
+    awake = r.get("manifold_awake") or {}
+    if awake:
+        w("**Sleep off** (`BM_PileAwake/<N>`: the same runs with `\"solver\": {\"sleep\": false}`, once "
+          "each): the solver alone, every body awake to the end. Islands sleep by default "
+          "(README, *Sleeping islands*): a body none of whose points moves faster than 1 cm/s for "
+          "0.5 s, in an island resting on a surface, sleeps until something touches or drives "
+          "it; the table above is the default.\n")
+        w("| N | falling: per simulated second | at rest: per step | at rest: per simulated second | "
+          "iterations per solve, at rest | max overlap, 0–3 s | fastest body at 3 s |")
+        w("|---:|---:|---:|---:|---:|---:|---:|")
+        for n, a in awake.items():
+            w(f"| {n} | {fmt_s(a['fall']['s_per_simulated_s'])} | {a['rest']['us_per_step']:.1f} µs | "
+              f"**{fmt_s(a['rest']['s_per_simulated_s'])}** | {a['rest']['iterations_per_solve']:.1f} | "
+              f"{a['max_overlap_state_m'] * 1e3:.2f} mm | {a['max_speed_3s_mps']:.3g} m/s |")
+        w("")
     w("Where a step goes (shares of the steps' wall time):\n")
     w("| N | window | " + " | ".join(STAGES) + " | other |")
     w("|---:|---|" + "---:|" * (len(STAGES) + 1))
@@ -852,7 +885,7 @@ def main():
         interleaved = interleaved_pile_ratio(build, scenes, folder, 100 if args.quick else 1000,
                                              1 if args.quick else 3)
         log("== the manifold contact solver's piles (rigid-bench-core BM_PileManifold)")
-        manifold, manifold_il = run_manifold(build, scenes, folder, args.quick)
+        manifold, manifold_il, manifold_awake = run_manifold(build, scenes, folder, args.quick)
     if peers is None:
         log("MuJoCo: not measured (no .venv-peers; scripts/bench.sh without --quick creates it)")
     accuracy = {"T": T, "omega0": [float(x) for x in omega0], "ours": ours, "mujoco": [], "equal_accuracy": []}
@@ -862,7 +895,7 @@ def main():
         accuracy["equal_accuracy"] = equal_accuracy(ours, [m for m in peers["free_one"] if m["integrator"] == "RK4"])
 
     rows = targets(free, piles, peers, interleaved)
-    mrows = manifold_targets(manifold, peers, manifold_il)
+    mrows = manifold_targets(manifold, peers, manifold_il, manifold_awake)
     meta = {"quick": args.quick, "date": time.strftime("%Y-%m-%d %H:%M %Z"), "cpu": cpu_name(),
             "python": f"Python {platform.python_version()}", "repeats": repeats,
             "benchmark_library": f"1.7 ({context.get('library_build_type', '?')} build, Debian)",
@@ -870,6 +903,7 @@ def main():
             "seconds": time.perf_counter() - t_start}
     report = {"free": free, "piles": piles, "fmu": fmu, "peers": peers, "interleaved": interleaved,
               "manifold": manifold, "manifold_interleaved": manifold_il, "manifold_targets": mrows,
+              "manifold_awake": manifold_awake,
               "accuracy": accuracy, "targets": rows, "meta": meta}
     fig_dir = out / "performance"
     files = plots(fig_dir, free, piles, peers, manifold)

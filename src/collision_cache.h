@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "collision_detection.h"
+#include "contact_memory.h"
 #include "contact_solver.h"
 
 namespace rigid {
@@ -16,6 +17,11 @@ struct CollisionCache {
   std::vector<double> boundingRadius;   // m, per body (0 for bodies that meet nothing)
   std::vector<double> travel;           // m, scratch: each body's reach in a step
   ContactScratchPtr solver;             // the contact solver's buffers
+  // sleep.cpp's buffers: islands (union-find), which rest on a surface and which are
+  // still long enough; the contact memory of sleeping bodies set aside during a solve
+  std::vector<int> island;
+  std::vector<char> grounded, ready;
+  std::vector<ContactMemory> sleepingMemory, mergedMemory;
 };
 
 }  // namespace rigid

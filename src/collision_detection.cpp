@@ -531,12 +531,15 @@ CollisionDetector::CollisionDetector(CollisionDetector&&) noexcept = default;
 CollisionDetector& CollisionDetector::operator=(CollisionDetector&&) noexcept = default;
 
 void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, std::vector<Contact>& out,
-                               StepProfile* profile, double speculative) {
+                               StepProfile* profile, double speculative, const std::vector<char>* asleep) {
   Impl& d = *impl_;
   const auto start = profile ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   if (Y.size() != d.bodySlot.size())
     throw std::invalid_argument("CollisionDetector::detect: " + std::to_string(Y.size()) + " states for " +
                                 std::to_string(d.bodySlot.size()) + " bodies");
+  if (asleep && asleep->size() != d.bodySlot.size())
+    throw std::invalid_argument("CollisionDetector::detect: " + std::to_string(asleep->size()) +
+                                " sleep flags for " + std::to_string(d.bodySlot.size()) + " bodies");
   margin = std::max(margin, 0.0);
   speculative = std::max(speculative, margin);
   out.clear();
@@ -563,8 +566,9 @@ void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, s
   // the response's passes, and so its results, follow it. Counting sort by body, then
   // each body's few pairs by partner.
   d.found.clear();
+  auto sleeping = [&](int body) { return asleep && body >= 0 && (*asleep)[body]; };
   for (const auto& [s1, s2] : d.overlapping)
-    if (Impl::Pair p; d.candidate(s1, s2, p)) d.found.push_back(p);
+    if (Impl::Pair p; d.candidate(s1, s2, p) && !(sleeping(p.a) && (p.b < 0 || sleeping(p.b)))) d.found.push_back(p);
   d.firstOf.assign(d.bodySlot.size() + 1, 0);
   for (const Impl::Pair& p : d.found) ++d.firstOf[p.a + 1];
   for (size_t b = 1; b < d.firstOf.size(); ++b) d.firstOf[b] += d.firstOf[b - 1];

@@ -59,8 +59,10 @@ class CollisionDetector {
   // reported too, for the position correction to know what its moves could push into:
   // box pairs as ONE contact along their separating axis with depth = -(the gap along
   // it, a lower bound of their distance), other pairs as with the margin.
+  // `asleep` (per body, or null): pairs of two sleeping bodies and of a sleeping body
+  // with a surface are skipped (sleep.h); a sleeping body's pairs with awake ones are not.
   void detect(const std::vector<BodyState>& Y, double margin, std::vector<Contact>& out,
-              StepProfile* profile = nullptr, double speculative = 0.0);
+              StepProfile* profile = nullptr, double speculative = 0.0, const std::vector<char>* asleep = nullptr);
 
  private:
   struct Impl;

@@ -330,7 +330,7 @@ Scene parseScene(const std::string& text) {
   m.name = identifier(o, "name", "scene");
   m.gravity = o.vec3("gravity", Vec3(0.0, 0.0, -9.81));
   if (o.has("solver")) {
-    Object s(o.at("solver"), "solver", {"method", "step", "tolerance", "energyGainLimit", "contacts"});
+    Object s(o.at("solver"), "solver", {"method", "step", "tolerance", "energyGainLimit", "contacts", "sleep", "sleepSpeed", "sleepTime"});
     const std::string method = s.string("method", "rk4");
     const auto chosen = methodFromName(method);
     if (!chosen) {
@@ -351,6 +351,11 @@ Scene parseScene(const std::string& text) {
     m.energyGainLimit = s.number("energyGainLimit", defaults::kEnergyGainLimit);
     if (m.energyGainLimit < 0.0)
       fail("solver.energyGainLimit", "must be >= 0 (0: unchecked), got " + num(m.energyGainLimit));
+    m.sleep.enabled = s.boolean("sleep", m.sleep.enabled);
+    m.sleep.speed = s.number("sleepSpeed", m.sleep.speed);
+    if (!(m.sleep.speed >= 0.0)) fail("solver.sleepSpeed", "must be >= 0 (m/s), got " + num(m.sleep.speed));
+    const double time = m.sleep.time;
+    m.sleep.time = positive(s, "sleepTime", &time);
   }
   m.bodies = readList<BodyConstants>(o, "bodies", true, readBody);
   if (m.bodies.empty()) fail("bodies", "must hold at least one body");

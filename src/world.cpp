@@ -14,6 +14,7 @@
 #include "contact_rules.h"
 #include "contact_solver.h"
 #include "module_switches.h"
+#include "sleep.h"
 
 namespace rigid {
 
@@ -31,6 +32,7 @@ WorldData initialData(const WorldModel& model) {
   d.inputRate.assign(n, BodyInput{});
   d.aux.resize(n);
   d.contacts.assign(n, 0);
+  d.sleep = awakeState(n);
   if constexpr (modules::kCollisions) {
     std::vector<bool> collides, meetsSurfaces;
     for (const BodyConstants& body : model.bodies) {
@@ -43,7 +45,7 @@ WorldData initialData(const WorldModel& model) {
     const long onSurfaces = model.surfaces.empty() ? 0 : std::count(meetsSurfaces.begin(), meetsSurfaces.end(), true);
     if (colliding >= 2 || onSurfaces >= 1) {
       d.collision = std::make_shared<CollisionCache>(
-          CollisionCache{CollisionDetector(model, collides, meetsSurfaces), {}, {}, {}, {}, {}});
+          CollisionCache{CollisionDetector(model, collides, meetsSurfaces), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}});
       for (size_t i = 0; i < model.bodies.size(); ++i) {
         const Shape& shape = model.bodies[i].shape;
         d.collision->halfThickness.push_back(meetsSurfaces[i] ? halfThickness(shape) : 0.0);
@@ -153,10 +155,12 @@ StepResult failed(int body) {
 }
 
 // Returns the integrator's steps (0: the adaptive method failed its tolerance).
+// Sleeping bodies stay where they are.
 int advance(const WorldModel& model, WorldData& data, double tau, std::vector<BodyState>& next) {
   Stopwatch integration(slotOf(data, &StepProfile::integration));
   const int steps = integrate(model, data, tau, next);
   normaliseOrientations(next);
+  if constexpr (modules::kCollisions) holdSleepers(data.sleep, data.Y, next);
   return steps;
 }
 
@@ -168,11 +172,18 @@ struct StepContext {
   bool bouncy;  // some body of xi > 0 meets something: impacts are located
 };
 
-// The contacts of Y into the collision cache: pairs closer than `margin` too.
+// The contacts of Y into the collision cache: pairs closer than `margin` too. The
+// pairs among sleeping bodies and surfaces are left out; a sleeping island that an
+// awake body reaches wakes, and its own contacts are then detected too.
 void detectContacts(StepContext& s, const std::vector<BodyState>& Y, double margin) {
   if constexpr (modules::kCollisions) {
-    if (CollisionCache* c = s.data.collision.get())
-      c->detector.detect(Y, margin, c->contacts, profileOf(s.data), margin);
+    CollisionCache* c = s.data.collision.get();
+    if (!c) return;
+    SleepState& sleep = s.data.sleep;
+    const std::vector<char>* asleep = sleep.sleeping > 0 ? &sleep.asleep : nullptr;
+    c->detector.detect(Y, margin, c->contacts, profileOf(s.data), margin, asleep);
+    if (wakeTouched(c->contacts, sleep))
+      c->detector.detect(Y, margin, c->contacts, profileOf(s.data), margin, sleep.sleeping > 0 ? &sleep.asleep : nullptr);
   }
 }
 
@@ -213,14 +224,18 @@ double locateImpact(StepContext& s, double tau, std::vector<BodyState>& next) {
 // contact in the collision cache (detected for `after`), body-body and body-surface,
 // in one solve: manifolds, warm start, impulses, positions, store (contact_solver.h).
 void respondToContacts(StepContext& s, std::vector<BodyState>& after) {
-  std::fill(s.data.contacts.begin(), s.data.contacts.end(), 0);
+  const SleepState& sleep = s.data.sleep;
+  for (size_t i = 0; i < s.data.contacts.size(); ++i)
+    if (!sleep.asleep[i]) s.data.contacts[i] = 0;  // a sleeping body keeps its count
   if constexpr (modules::kCollisions) {
     CollisionCache* c = s.data.collision.get();
     if (!c) return;
     Stopwatch response(slotOf(s.data, &StepProfile::response));
     const ContactStep step{s.h, restingNormalSpeed(s.model.gravity, s.h), constantForceDisplacement(s.model.method)};
+    setAsideSleeping(sleep, s.data.contactMemory, *c);
     const ContactSolveReport report =
         solveContacts(s.model, c->contacts, step, s.data.contactMemory, after, s.data.contacts, c->solver);
+    mergeBackSleeping(s.data.contactMemory, *c);
     if (s.data.profiling) {
       ++s.data.profile.solves;
       s.data.profile.iterations += report.iterations;
@@ -369,6 +384,8 @@ StepResult stepOnce(StepContext& s) {
     }
     respondToContacts(s, next);
     if (const StepResult r = commit(s.model, s.data, next, s.h); !r.ok) return r;
+    if constexpr (modules::kCollisions)
+      if (CollisionCache* c = s.data.collision.get()) updateSleep(s.model, s.data, taken, *c);
     s.data.steps += steps;
     done += taken;
     if (taken == rest || impacts >= kMaxImpactsPerStep) return {};
@@ -441,6 +458,7 @@ StepResult step(const WorldModel& model, WorldData& data, double h) {
     return plan;
   }
   if (data.profiling) data.profile.steps += plan.substeps;
+  if constexpr (modules::kCollisions) wakeDriven(data);
   StepContext context{model, data, h / static_cast<double>(plan.substeps), bouncyWorld(model)};
   for (long k = 0; k < plan.substeps; ++k) {
     StepResult r = stepOnce(context);

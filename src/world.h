@@ -10,6 +10,7 @@
 #include "contact_memory.h"
 #include "integrator.h"
 #include "medium.h"
+#include "sleep_state.h"
 #include "surface.h"
 
 namespace rigid {
@@ -27,6 +28,7 @@ struct WorldModel {
   // 1, largest relative gain of a torque-free body's rotational energy over a run
   // before a step is refused (0: unchecked); explicit Euler gains ~(h |omega|)^2 a step.
   double energyGainLimit = 1e-3;
+  SleepRules sleep;                      // when islands at rest sleep (sleep.h)
   std::vector<BodyConstants> bodies;
   std::vector<Surface> surfaces;
   std::vector<Medium> media;
@@ -79,6 +81,8 @@ struct WorldData {
   // The contact points of the last step with their accumulated impulses, for the
   // next step's warm start. Part of the FMU state.
   std::vector<ContactMemory> contactMemory;
+  // Which bodies sleep (sleep.h). Part of the FMU state.
+  SleepState sleep;
   Scratch scratch;
   bool profiling = false;
   StepProfile profile;

@@ -74,6 +74,11 @@ def test_manifold_piles_falling_and_at_rest(quick):
         for key in ("max_overlap_state_m", "max_overlap_rest_m", "max_speed_1s_mps", "max_speed_3s_mps"):
             assert math.isfinite(m[key]) and m[key] >= 0, (n, key)
         assert m["max_overlap_rest_m"] <= m["max_overlap_state_m"]
+    # the same piles with sleep off (the solver alone): every body awake to the end
+    for n in PILE_N:
+        a = r["manifold_awake"][str(n)]
+        assert a["steps_ok"] == a["steps"] and a["asleep_3s"] == 0, n
+        assert measured(a["rest"]["s_per_simulated_s"]) and a["rest"]["solves_per_step"] > 0, n
     labels = [row[0] for row in r["manifold_targets"]]
     assert any("at rest (2–3 s)" in x and "MuJoCo" in x for x in labels)
     assert any("penetration ≤ 1 mm" in x for x in labels)
@@ -148,7 +153,8 @@ def test_markdown_and_plots(quick):
     # and its MuJoCo table (with "not measured" where MuJoCo was not)
     manifold = text[text.index("## Manifold contact solver"):text.index("## How it is measured")]
     for heading in ("iterations per solve, at rest", "fastest body at 3 s", "| N | window |",
-                    "### Beside MuJoCo", "MuJoCo fastest body at 3 s", "ratio at rest, ours/theirs"):
+                    "### Beside MuJoCo", "MuJoCo fastest body at 3 s", "ratio at rest, ours/theirs",
+                    "asleep at 3 s", "**Sleep off**"):
         assert heading in manifold, heading
     for n in PILE_N:
         assert f"| {n} | falling, 0–1 s |" in manifold and f"| {n} | at rest, 2–3 s |" in manifold

@@ -49,10 +49,12 @@ def test_bounce_apex_heights_follow_restitution_at_any_step(fmu_of, h):
     # at rest on the floor: at h = 1 ms within 1 um; at h = 10 ms the last hops, too slow
     # to bounce (below 2 g h = 0.2 m/s) and so not located, sink in by up to g h^2 before
     # the contact answers, and the position correction takes the ball back to its seat,
-    # the solver's slop of 0.1 mm (the first model put it on the face exactly)
+    # the solver's slop of 0.1 mm (the first model put it on the face exactly); once the
+    # ball has been still for the sleep time it sleeps where it is, its last nanometres of
+    # correction (2 % of the excess a step at h = 10 ms) not taken: within 1e-8 m
     seat = 1e-6 if h < 5e-3 else 1e-4
     assert np.max(np.abs(z[rest])) < seat + 2e-5
-    assert abs(z[-1]) < seat + 1e-9
+    assert abs(z[-1]) < seat + 1e-8
 
 
 def test_sliding_sphere_ends_rolling_without_slipping(fmu_of):

@@ -131,7 +131,8 @@ TEST(Scene, UnknownBodyField) {
 
 TEST(Scene, UnknownSolverField) {
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"method": "rk4", "dt": 0.1}, )"),
-                     "solver.dt: unknown field (known: method, step, tolerance, energyGainLimit, contacts)");
+                     "solver.dt: unknown field (known: method, step, tolerance, energyGainLimit, contacts, sleep, "
+                     "sleepSpeed, sleepTime)");
 }
 
 TEST(Scene, ContactSolverIsTheOnlyOne) {
@@ -140,6 +141,22 @@ TEST(Scene, ContactSolverIsTheOnlyOne) {
                      "solver.contacts: \"centroid\" (the first contact model) was removed; must be \"manifold\"");
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "penalty"}, )"),
                      "solver.contacts: must be \"manifold\", got \"penalty\"");
+}
+
+TEST(Scene, SleepRules) {
+  const rigid::WorldModel fallback = rigid::parseScene(sceneWith("", "")).model;
+  EXPECT_TRUE(fallback.sleep.enabled);
+  EXPECT_EQ(fallback.sleep.speed, 0.01);
+  EXPECT_EQ(fallback.sleep.time, 0.5);
+  const rigid::WorldModel set = rigid::parseScene(
+      sceneWith("", R"("solver": {"sleep": false, "sleepSpeed": 0.002, "sleepTime": 2}, )")).model;
+  EXPECT_FALSE(set.sleep.enabled);
+  EXPECT_EQ(set.sleep.speed, 0.002);
+  EXPECT_EQ(set.sleep.time, 2.0);
+  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"sleep": "yes"}, )"), "solver.sleep: must be true or false");
+  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"sleepSpeed": -0.01}, )"),
+                     "solver.sleepSpeed: must be >= 0 (m/s), got -0.01");
+  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"sleepTime": 0}, )"), "solver.sleepTime: must be > 0, got 0");
 }
 
 TEST(Scene, NameNotIdentifier) {

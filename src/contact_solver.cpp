@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "contact_rules.h"
+#include "islands.h"
 
 namespace rigid {
 
@@ -529,12 +530,6 @@ void solveBlock(Solver& s, const std::vector<size_t>& rows, std::vector<BodyStat
   }
 }
 
-// The root of body i's island (union-find, halving the paths it walks).
-int islandOf(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
-
 // The ratio of the heaviest to the lightest body that the rows [begin, end) of `order`
 // touch (1 when they touch one body).
 double massRatio(const Solver& s, const std::vector<size_t>& order, size_t begin, size_t end) {
@@ -565,8 +560,8 @@ void findBlockIslands(Solver& s) {
   parent.resize(s.bodies.size());
   std::iota(parent.begin(), parent.end(), 0);
   for (const Row& r : s.rows)
-    if (r.b != statics) parent[islandOf(parent, r.a)] = islandOf(parent, r.b);
-  for (int& p : parent) p = islandOf(parent, p);
+    if (r.b != statics) parent[islandRoot(parent, r.a)] = islandRoot(parent, r.b);
+  for (int& p : parent) p = islandRoot(parent, p);
   std::stable_sort(order.begin(), order.end(),
                    [&](size_t x, size_t y) { return parent[s.rows[x].a] < parent[s.rows[y].a]; });
   for (size_t begin = 0; begin < order.size();) {

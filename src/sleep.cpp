@@ -4,15 +4,11 @@
 #include <numeric>
 #include <tuple>
 
+#include "islands.h"
+
 namespace rigid {
 
 namespace {
-
-// The root of body i's island (union-find, halving the paths it walks).
-int rootOf(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
 
 // A woken body must be still for the sleep time again before it sleeps: what woke it
 // (a touch, an input, a new parameter) may take a few steps to move it.
@@ -82,17 +78,17 @@ void updateSleep(const WorldModel& model, WorldData& data, double h, CollisionCa
   parent.resize(n);
   std::iota(parent.begin(), parent.end(), 0);
   for (const Contact& c : contacts)
-    if (c.b >= 0) parent[rootOf(parent, c.a)] = rootOf(parent, c.b);
+    if (c.b >= 0) parent[islandRoot(parent, c.a)] = islandRoot(parent, c.b);
   std::vector<char>& grounded = cache.grounded;
   std::vector<char>& ready = cache.ready;
   grounded.assign(n, 0);
   ready.assign(n, 1);
   for (const Contact& c : contacts)
-    if (c.b < 0) grounded[rootOf(parent, c.a)] = 1;
+    if (c.b < 0) grounded[islandRoot(parent, c.a)] = 1;
   for (int i = 0; i < n; ++i)
-    if (!s.asleep[i] && s.stillFor[i] < model.sleep.time) ready[rootOf(parent, i)] = 0;
+    if (!s.asleep[i] && s.stillFor[i] < model.sleep.time) ready[islandRoot(parent, i)] = 0;
   for (int i = 0; i < n; ++i) {
-    const int root = rootOf(parent, i);
+    const int root = islandRoot(parent, i);
     if (s.asleep[i] || !ready[root] || !grounded[root]) continue;
     s.asleep[i] = 1;
     s.island[i] = root;

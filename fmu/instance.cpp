@@ -161,6 +161,7 @@ fmi2Status Instance::exitInitializationMode() {
   for (const rigid::BodyConstants& b : model_.bodies)
     if (b.start.orientation.norm() < 1e-12)
       return error(b.name + ".orientation: must not be the zero quaternion");
+  if (const std::string why = frictionConflict(model_); !why.empty()) return error(why);
   data_ = rigid::initialData(model_);
   time_ = lastSuccessfulTime_ = startTime_;
   state_ = kStepComplete;
@@ -287,6 +288,8 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
   if (std::abs(tc - time_) > tolerance)
     return error("fmi2DoStep: currentCommunicationPoint " + num(tc) +
                  " is not the FMU's time " + num(time_) + " (tolerance " + num(tolerance) + ")");
+  // friction set since the last step: mu_k <= mu_s, checked now that both are set
+  if (const std::string why = frictionConflict(model_); !why.empty()) return error("fmi2DoStep: " + why);
   const double ratio = h / model_.maxStep;
   if (ratio > 1e12)
     return error("fmi2DoStep: communicationStepSize " + num(h) + " s needs more than 1e12 steps of solver.step = " +

@@ -70,6 +70,18 @@ std::string readContactMemory(Reader& r, Snapshot& out, bool& ok) {
   return "";
 }
 
+// Friction, densities and viscosities finite and >= 0, restitutions in [0, 1].
+bool materialsInRange(const rigid::WorldModel& m) {
+  auto ok = [](double v) { return std::isfinite(v) && v >= 0.0; };
+  for (const rigid::BodyConstants& b : m.bodies)
+    if (!ok(b.staticFriction) || !ok(b.kineticFriction) || !ok(b.restitution) || b.restitution > 1.0) return false;
+  for (const rigid::Surface& f : m.surfaces)
+    if (!ok(f.staticFriction) || !ok(f.kineticFriction) || !ok(f.restitution) || f.restitution > 1.0) return false;
+  for (const rigid::Medium& f : m.media)
+    if (!ok(f.density) || !ok(f.viscosity)) return false;
+  return true;
+}
+
 }  // namespace
 
 std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
@@ -87,10 +99,13 @@ std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
   w.put(static_cast<int32_t>(s.model.method));
   w.put(s.model.maxStep), w.put(s.model.tolerance), w.put(s.model.energyGainLimit);
   for (const rigid::BodyConstants& b : s.model.bodies) {
-    w.put(b.mass), w.put(b.restitution);
+    w.put(b.mass), w.put(b.restitution), w.put(b.staticFriction), w.put(b.kineticFriction);
     w.put(b.start.position), w.put(b.start.orientation), w.put(b.start.velocity),
         w.put(b.start.angularVelocity);
   }
+  for (const rigid::Surface& f : s.model.surfaces)
+    w.put(f.staticFriction), w.put(f.kineticFriction), w.put(f.restitution);
+  for (const rigid::Medium& m : s.model.media) w.put(m.density), w.put(m.viscosity);
   for (uint32_t i = 0; i < n; ++i) {
     const rigid::BodyState& y = s.data.Y[i];
     w.put(y.X), w.put(y.q), w.put(y.P), w.put(y.L);
@@ -137,11 +152,16 @@ std::string deserialize(const char* bytes, size_t size, const std::string& guid,
             r.get(out.model.maxStep) && r.get(out.model.tolerance) && r.get(out.model.energyGainLimit);
   for (rigid::BodyConstants& b : out.model.bodies) {
     double mass = 0.0;
-    ok = ok && r.get(mass) && r.get(b.restitution) && r.get(b.start.position) &&
+    ok = ok && r.get(mass) && r.get(b.restitution) && r.get(b.staticFriction) && r.get(b.kineticFriction) &&
+         r.get(b.start.position) &&
          r.get(b.start.orientation) && r.get(b.start.velocity) && r.get(b.start.angularVelocity);
     if (ok && !(mass > 0.0 && std::isfinite(mass))) return "the state holds a mass that is not > 0";
     if (ok) rigid::setMass(b, mass);  // Ibody follows, as when the parameter is set
   }
+  for (rigid::Surface& f : out.model.surfaces)
+    ok = ok && r.get(f.staticFriction) && r.get(f.kineticFriction) && r.get(f.restitution);
+  for (rigid::Medium& m : out.model.media) ok = ok && r.get(m.density) && r.get(m.viscosity);
+  if (ok && !materialsInRange(out.model)) return "the state holds a friction, restitution or fluid property out of range";
   for (uint32_t i = 0; i < n && ok; ++i) {
     rigid::BodyState& y = out.data.Y[i];
     int32_t contacts = 0, island = 0;

@@ -21,8 +21,8 @@ struct Snapshot {
 
 // Bumped whenever the layout below changes: an old serialisation is then refused.
 // 2: input derivatives; 3: energy audit, last step; 4: the contact solver's memory;
-// 5: which bodies sleep
-inline constexpr uint32_t kSnapshotVersion = 5;
+// 5: which bodies sleep; 6: friction, surfaces' restitution, media's density and viscosity
+inline constexpr uint32_t kSnapshotVersion = 6;
 
 // The bytes of a snapshot of a scene with this GUID.
 std::vector<char> serialize(const Snapshot& s, const std::string& guid);

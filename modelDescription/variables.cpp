@@ -72,6 +72,16 @@ void setQuatPart(rigid::Quat& q, int c, double value) {
   }
 }
 
+// The friction coefficient a friction variable names.
+double& frictionOf(const Variable& v, WorldModel& model) {
+  switch (v.quantity) {
+    case Quantity::StaticFriction: return model.bodies[v.body].staticFriction;
+    case Quantity::KineticFriction: return model.bodies[v.body].kineticFriction;
+    case Quantity::SurfaceStaticFriction: return model.surfaces[v.body].staticFriction;
+    default: return model.surfaces[v.body].kineticFriction;
+  }
+}
+
 }  // namespace
 
 std::vector<Variable> modelVariables(const Scene& scene) {
@@ -131,6 +141,46 @@ std::vector<Variable> modelVariables(const Scene& scene) {
            Variability::Discrete, Initial::Calculated, BaseType::Integer, "",
            body.name + ": number of contact points at the end of the last step (surfaces and bodies)"});
   }
+  // The scene's material and fluid constants, after every earlier variable so that
+  // their value references stay as they were. Tunable: the contact solve and the media
+  // read them afresh at every step, and nothing derived from them is kept (geometry,
+  // which the detector and the bounding boxes are built from, stays fixed).
+  auto parameter = [&](const std::string& owner, const char* field, Quantity q, int index, const char* unit,
+                       const std::string& meaning) {
+    add({0, owner + "." + field, q, index, 0, Causality::Parameter, Variability::Tunable, Initial::Exact,
+         BaseType::Real, unit, owner + ": " + meaning});
+  };
+  const char* combined = " (a pair's coefficient is the geometric mean of its two sides')";
+  // a body's friction, only where it can touch something (a surface, or another body
+  // when two or more collide): elsewhere it would be a parameter that changes nothing
+  const auto& bodies = scene.model.bodies;
+  const long colliding = std::count_if(bodies.begin(), bodies.end(), [](const BodyConstants& b) { return b.collides; });
+  for (size_t b = 0; b < bodies.size(); ++b) {
+    if (scene.model.surfaces.empty() && !(bodies[b].collides && colliding >= 2)) continue;
+    const std::string& name = bodies[b].name;
+    parameter(name, "staticFriction", Quantity::StaticFriction, static_cast<int>(b), "1",
+              std::string("static friction coefficient mu_s, >= kineticFriction") + combined);
+    parameter(name, "kineticFriction", Quantity::KineticFriction, static_cast<int>(b), "1",
+              std::string("kinetic friction coefficient mu_k, >= 0") + combined);
+  }
+  for (size_t s = 0; s < scene.model.surfaces.size(); ++s) {
+    const std::string& name = scene.model.surfaces[s].name;
+    const int si = static_cast<int>(s);
+    parameter(name, "staticFriction", Quantity::SurfaceStaticFriction, si, "1",
+              std::string("surface's static friction coefficient mu_s, >= kineticFriction") + combined);
+    parameter(name, "kineticFriction", Quantity::SurfaceKineticFriction, si, "1",
+              std::string("surface's kinetic friction coefficient mu_k, >= 0") + combined);
+    parameter(name, "restitution", Quantity::SurfaceRestitution, si, "1",
+              std::string("surface's coefficient of restitution xi, in [0, 1]") + combined);
+  }
+  for (size_t m = 0; m < scene.model.media.size(); ++m) {
+    const std::string& name = scene.model.media[m].name;
+    const int mi = static_cast<int>(m);
+    parameter(name, "density", Quantity::MediumDensity, mi, "kg/m3",
+              "fluid density rho, >= 0 (buoyancy rho V g, drag)");
+    parameter(name, "viscosity", Quantity::MediumViscosity, mi, "Pa.s",
+              "fluid dynamic viscosity, >= 0 (the drag's linear term)");
+  }
   return vars;
 }
 
@@ -169,6 +219,13 @@ double readValue(const Variable& v, const WorldModel& model, const WorldData& da
     case Quantity::SolverErrorEstimate: return setup ? 0.0 : data.errorEstimate;
     case Quantity::Mass: return model.bodies[b].mass;
     case Quantity::Restitution: return model.bodies[b].restitution;
+    case Quantity::StaticFriction: return model.bodies[b].staticFriction;
+    case Quantity::KineticFriction: return model.bodies[b].kineticFriction;
+    case Quantity::SurfaceStaticFriction: return model.surfaces[b].staticFriction;
+    case Quantity::SurfaceKineticFriction: return model.surfaces[b].kineticFriction;
+    case Quantity::SurfaceRestitution: return model.surfaces[b].restitution;
+    case Quantity::MediumDensity: return model.media[b].density;
+    case Quantity::MediumViscosity: return model.media[b].viscosity;
     case Quantity::Position:
       return setup ? model.bodies[b].start.position[c] : vectorPart(data.Y[b].X, c);
     case Quantity::Orientation:
@@ -235,6 +292,25 @@ std::string writeValue(const Variable& v, double value, WorldModel& model, World
       if (value < 0.0 || value > 1.0) return v.name + ": must be in [0, 1], got " + fmt(value);
       model.bodies[b].restitution = value;
       return "";
+    case Quantity::SurfaceRestitution:
+      if (value < 0.0 || value > 1.0) return v.name + ": must be in [0, 1], got " + fmt(value);
+      model.surfaces[b].restitution = value;
+      return "";
+    case Quantity::StaticFriction:
+    case Quantity::KineticFriction:
+    case Quantity::SurfaceStaticFriction:
+    case Quantity::SurfaceKineticFriction:
+      if (value < 0.0) return v.name + ": must be >= 0, got " + fmt(value);
+      frictionOf(v, model) = value;
+      return "";
+    case Quantity::MediumDensity:
+      if (value < 0.0) return v.name + ": must be >= 0 kg/m3, got " + fmt(value);
+      model.media[b].density = value;
+      return "";
+    case Quantity::MediumViscosity:
+      if (value < 0.0) return v.name + ": must be >= 0 Pa.s, got " + fmt(value);
+      model.media[b].viscosity = value;
+      return "";
     case Quantity::Position:
     case Quantity::Orientation:
     case Quantity::Velocity:
@@ -258,6 +334,18 @@ std::string writeValue(const Variable& v, double value, WorldModel& model, World
       return v.name + ": a calculated output; it cannot be set";
   }
   return v.name + ": cannot be set";
+}
+
+std::string frictionConflict(const WorldModel& model) {
+  auto check = [](const std::string& name, double mus, double muk) -> std::string {
+    if (muk <= mus) return "";
+    return name + ".kineticFriction: must be <= " + name + ".staticFriction (" + fmt(mus) + "), got " + fmt(muk);
+  };
+  for (const BodyConstants& b : model.bodies)
+    if (std::string why = check(b.name, b.staticFriction, b.kineticFriction); !why.empty()) return why;
+  for (const rigid::Surface& s : model.surfaces)
+    if (std::string why = check(s.name, s.staticFriction, s.kineticFriction); !why.empty()) return why;
+  return "";
 }
 
 }  // namespace rigidfmu

@@ -18,7 +18,8 @@ enum class BaseType { Real, Integer, Enumeration };
 
 enum class Quantity {
   Time, Gravity, SolverMethod, SolverStep, SolverTolerance, SolverEnergyGainLimit, SolverSteps, SolverErrorEstimate,
-  Mass, Restitution,
+  Mass, Restitution, StaticFriction, KineticFriction,
+  SurfaceStaticFriction, SurfaceKineticFriction, SurfaceRestitution, MediumDensity, MediumViscosity,
   Position, Orientation, Velocity, AngularVelocity, LinearMomentum, AngularMomentum,
   Force, Torque,
   Contacts,
@@ -28,7 +29,7 @@ struct Variable {
   unsigned vr = 0;          // value reference = index in the table
   std::string name;         // structured name, e.g. ball.position[1]
   Quantity quantity = Quantity::Time;
-  int body = -1;            // index of the body, -1 for world variables
+  int body = -1;            // index of the body (of the surface or medium for theirs), -1 for world variables
   int component = 0;        // 0-based: x, y, z; quaternions w, x, y, z
   Causality causality = Causality::Output;
   Variability variability = Variability::Continuous;
@@ -55,8 +56,14 @@ double readValue(const Variable& v, const rigid::WorldModel& model, const rigid:
 
 // Writes a value; returns "" on success or the reason it is refused, naming the
 // variable and the limit. Writes only what the variable owns; the caller decides when
-// a variable may be written at all.
+// a variable may be written at all. A friction coefficient is checked alone here
+// (finite, >= 0); that mu_k <= mu_s is checked when the pair takes effect
+// (frictionConflict), so that the two can be set in either order.
 std::string writeValue(const Variable& v, double value, rigid::WorldModel& model,
                        rigid::WorldData& data, Phase phase);
+
+// "" when every body's and surface's kinetic friction is at most its static friction,
+// else the first that is not, naming both variables and their values.
+std::string frictionConflict(const rigid::WorldModel& model);
 
 }  // namespace rigidfmu

@@ -8,8 +8,9 @@ Study file (JSON, or TOML when it ends in .toml); paths are relative to it:
     "stopTime": 5.0, "stepSize": 0.01,      (s; communication step)
     "design": {"type": "random", "runs": 200, "seed": 1},   (or {"type": "grid"})
     "parameters":  {"ball.restitution": {"uniform": [0.1, 0.9]},   (set through FMI:
-                    "ball.position[3]": 2.5},                        parameters, start values)
-    "sceneFields": {"bodies[slider].kineticFriction": {"values": [0.1, 0.2]}},
+                    "floor.kineticFriction": {"values": [0.1, 0.2]}, parameters,
+                    "ball.position[3]": 2.5},                        start values)
+    "sceneFields": {"bodies[ball].shape.radius": {"values": [0.1, 0.12]}},
     "inputs":      {"ball.force[1]": {"values": [0, [[0, 0], [1, 5]]]}},
     "metrics": {"x_end": {"of": "slider.position[1]", "reduce": "final"},
                 "speed_max": {"of": ["ball.velocity[1]", "ball.velocity[2]"], "reduce": "max"}},
@@ -21,7 +22,7 @@ time to the next, 0 before the first), or varied: {"values": [...]} (a grid axis
 uniformly among them in a random design), {"uniform"|"loguniform": [low, high]},
 {"normal": [mean, sd]} (random designs). Parameters and start values go through FMI
 into one FMU that each worker loads once and reuses through fmi2Reset; sceneFields
-(e.g. friction, which is no FMU parameter) give one FMU per distinct scene variant,
+(geometry, which is no FMU parameter) give one FMU per distinct scene variant,
 built once into OUT/fmus/. Reductions: initial, final, max, min, mean, time_of_max,
 time_of_min, settling_time (with "threshold").
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <initializer_list>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -315,6 +316,23 @@ std::vector<T> readList(const Object& o, const char* key, bool required, Read re
   return out;
 }
 
+// Bodies, surfaces and media name their FMU variables alike (NAME.field: a body's
+// staticFriction and a surface's would be one variable), so no name is used twice
+// across the three lists.
+void checkOneNameSpace(const WorldModel& m) {
+  std::map<std::string, std::string> owner;  // name -> where it was first given
+  auto claim = [&](const std::string& name, const std::string& where) {
+    const auto [it, fresh] = owner.emplace(name, where);
+    if (!fresh)
+      fail(where + ".name", "\"" + name + "\" is also the name of " + it->second +
+                                "; bodies, surfaces and media share one name space (their FMU variables are "
+                                "NAME.field)");
+  };
+  for (size_t i = 0; i < m.bodies.size(); ++i) claim(m.bodies[i].name, "bodies[" + std::to_string(i) + "]");
+  for (size_t i = 0; i < m.surfaces.size(); ++i) claim(m.surfaces[i].name, "surfaces[" + std::to_string(i) + "]");
+  for (size_t i = 0; i < m.media.size(); ++i) claim(m.media[i].name, "media[" + std::to_string(i) + "]");
+}
+
 }  // namespace
 
 Scene parseScene(const std::string& text) {
@@ -365,6 +383,7 @@ Scene parseScene(const std::string& text) {
   }
   m.surfaces = readList<Surface>(o, "surfaces", false, readSurface);
   m.media = readList<Medium>(o, "media", false, readMedium);
+  checkOneNameSpace(m);
   scene.canonicalJson = j.dump();
   return scene;
 }

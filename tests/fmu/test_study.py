@@ -20,12 +20,14 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 H, STEPS = 0.01, 100  # communication step and count: 1 s
 
 RESTITUTIONS = [0.1, 0.3, 0.5, 0.7, 0.9]
-# the floor's kineticFriction: a scene field, one FMU each. The static friction of ball
+# the floor's kineticFriction: a tunable parameter, set through FMI on the one FMU
+# (issue 18; it was a scene field with one FMU per level). The static friction of ball
 # and floor is low enough that no impact brings the ball to rolling at once (that takes
 # an impulse of 2/7 m v_slip, more than mu_s j here), so that the kinetic level sets the
 # slide.
 FRICTIONS = [0.02, 0.05]
 FORCES = [0.0, [[0.0, 0.0], [0.3, 2.0], [0.6, -1.0]]]  # ball.force[1]: none, or a table
+RADII = [0.1, 0.12]  # m, the ball's: geometry is no parameter, a scene field (one FMU each)
 
 
 def bouncing_ball():
@@ -38,25 +40,26 @@ def bouncing_ball():
     return s
 
 
-def with_friction(s, mu_k):
-    s = copy.deepcopy(s)
-    s["surfaces"][0]["kineticFriction"] = mu_k
-    return s
-
-
 METRICS = {"x_end": {"of": "ball.position[1]", "reduce": "final"},
            "z_min": {"of": "ball.position[3]", "reduce": "min"},
            "t_vz_max": {"of": "ball.velocity[3]", "reduce": "time_of_max"},
            "contacts_end": {"of": "ball.contacts", "reduce": "final"}}
 
 
-def serial_run(fmu, restitution, force, mass=None):
+def with_radius(s, r):
+    s = copy.deepcopy(s)
+    s["bodies"][0]["shape"]["radius"] = r
+    return s
+
+
+def serial_run(fmu, restitution, force, mass=None, friction=None):
     """The same run done here, with a fresh instance, without the study code."""
     s = Slave(fmu)
     try:
         s.slave.setupExperiment(startTime=0.0)
         s.set_values({"ball.restitution": restitution, "ball.position[3]": 0.4,
-                      **({"ball.mass": mass} if mass is not None else {})})
+                      **({"ball.mass": mass} if mass is not None else {}),
+                      **({"floor.kineticFriction": friction} if friction is not None else {})})
         s.slave.enterInitializationMode()
         s.slave.exitInitializationMode()
         names = ["ball.position[1]", "ball.position[3]", "ball.velocity[3]"]
@@ -100,13 +103,14 @@ def study_cli(study_file, out, cluster, *extra):
 
 @pytest.fixture(scope="module")
 def grid_study(tmp_path_factory, cluster):
-    """The 20-run study (5 restitutions x 2 frictions x 2 force signals), run once."""
+    """The 40-run study (5 restitutions x 2 frictions x 2 force signals x 2 radii), run once."""
     tmp = tmp_path_factory.mktemp("study")
     (tmp / "ball.json").write_text(json.dumps(bouncing_ball()))
     study = {"scene": "ball.json", "stopTime": STEPS * H, "stepSize": H,
              "design": {"type": "grid"},
-             "parameters": {"ball.restitution": {"values": RESTITUTIONS}, "ball.position[3]": 0.4},
-             "sceneFields": {"surfaces[floor].kineticFriction": {"values": FRICTIONS}},
+             "parameters": {"ball.restitution": {"values": RESTITUTIONS}, "ball.position[3]": 0.4,
+                            "floor.kineticFriction": {"values": FRICTIONS}},
+             "sceneFields": {"bodies[ball].shape.radius": {"values": RADII}},
              "inputs": {"ball.force[1]": {"values": FORCES}},
              "metrics": METRICS, "trajectories": ["ball.position[3]"]}
     (tmp / "grid.json").write_text(json.dumps(study))
@@ -116,18 +120,19 @@ def grid_study(tmp_path_factory, cluster):
 
 def test_dask_results_equal_serial_runs_bitwise(grid_study, cluster, fmu_of):
     tmp, executed, skipped = grid_study
-    assert (executed, skipped) == (20, 0)
+    assert (executed, skipped) == (40, 0)
     frame = pq.read_table(tmp / "out" / "results.parquet").to_pandas()
-    assert len(frame) == 20 and set(frame["status"]) == {"ok"}
+    assert len(frame) == 40 and set(frame["status"]) == {"ok"}
     assert set(frame["worker"]) <= set(cluster.scheduler_info["workers"])  # run on the cluster
-    assert frame["fmu"].nunique() == 2  # one FMU per friction
-    for e, mu, force in itertools.product(RESTITUTIONS, FRICTIONS, FORCES):
+    assert frame["fmu"].nunique() == 2  # one FMU per radius; the frictions go through FMI
+    for e, mu, force, r in itertools.product(RESTITUTIONS, FRICTIONS, FORCES, RADII):
         row = frame[(frame["parameter:ball.restitution"] == e)
-                    & (frame["scene:surfaces[floor].kineticFriction"] == mu)
-                    & (frame["input:ball.force[1]"] == json.dumps(force))]
-        assert len(row) == 1, (e, mu, force)
+                    & (frame["parameter:floor.kineticFriction"] == mu)
+                    & (frame["input:ball.force[1]"] == json.dumps(force))
+                    & (frame["scene:bodies[ball].shape.radius"] == r)]
+        assert len(row) == 1, (e, mu, force, r)
         row = row.iloc[0]
-        want = serial_run(fmu_of(with_friction(bouncing_ball(), mu)), e, force)
+        want = serial_run(fmu_of(with_radius(bouncing_ball(), r)), e, force, friction=mu)
         assert row["guid"] == want["guid"]  # the CLI built the same scene variant
         for m in METRICS:
             assert row[f"metric:{m}"] == want[m], (m, e, mu, force)  # bitwise, not approx
@@ -168,7 +173,7 @@ def test_a_rerun_repeats_no_finished_run(grid_study, cluster):
     out = tmp / "out"
     first = pq.read_table(out / "results.parquet")
     executed, skipped, _ = study_cli(tmp / "grid.json", out, cluster)
-    assert (executed, skipped) == (0, 20)
+    assert (executed, skipped) == (0, 40)
     assert pq.read_table(out / "results.parquet").equals(first)
     # a study interrupted after some batches: only the missing runs are run again
     parts = sorted((out / "parts").glob("part-*.parquet"))
@@ -176,7 +181,7 @@ def test_a_rerun_repeats_no_finished_run(grid_study, cluster):
     lost_runs = pq.read_table(lost).num_rows
     lost.unlink()
     executed, skipped, _ = study_cli(tmp / "grid.json", out, cluster)
-    assert (executed, skipped) == (lost_runs, 20 - lost_runs)
+    assert (executed, skipped) == (lost_runs, 40 - lost_runs)
     again = pq.read_table(out / "results.parquet").to_pandas().drop(columns=["seconds", "worker"])
     before = first.to_pandas().drop(columns=["seconds", "worker"])
     for column in before.columns:  # bitwise the same results, trajectories included

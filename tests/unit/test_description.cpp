@@ -45,6 +45,8 @@ std::set<std::string> expectedBodyNames(const std::string& b) {
   names.insert(b + ".mass");
   names.insert(b + ".restitution");
   names.insert(b + ".contacts");  // extension: contact points in the last step (issue 4)
+  names.insert(b + ".staticFriction");  // issue 18: friction as tunable parameters
+  names.insert(b + ".kineticFriction");
   return names;
 }
 
@@ -89,8 +91,7 @@ TEST_F(Description, VariableNamesAreThoseOfTheInterface) {
                                        "solver.energyGainLimit"};
   EXPECT_EQ(byOwner["world"], world);
   EXPECT_EQ(byOwner.size(), 3u);
-  // 27 per body + 6 world variables.
-  EXPECT_EQ(vars.size(), 2u * 28u + 10u);  // 28 per body, 10 for the world
+  EXPECT_EQ(vars.size(), 2u * 30u + 10u);  // 30 per body, 10 for the world
 }
 
 TEST_F(Description, CausalityAndUnitsFollowTheInterfaceTable) {
@@ -299,4 +300,53 @@ TEST_F(Description, OutputsCannotBeWrittenWhileRunning) {
   EXPECT_TRUE(contains(rigidfmu::writeValue(find(vars, "b.linearMomentum[1]"), 1.0, model, data,
                                             Phase::Setup),
                        "b.linearMomentum[1]"));
+}
+
+// Issue 18: every friction, a surface's restitution and a medium's density and viscosity
+// are tunable parameters NAME.field, after the earlier variables (whose value
+// references stay), with the scene's values as start values; bad values are refused
+// naming the variable and the limit; mu_k <= mu_s is checked when both are set.
+TEST(Parameters, MaterialAndFluidConstantsAreTunableParameters) {
+  const rigid::Scene scene = rigid::parseScene(R"({"name": "P",
+    "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1.0,
+                "staticFriction": 0.7, "kineticFriction": 0.5}],
+    "surfaces": [{"name": "floor", "min": [-1, -1, -1], "max": [1, 1, 0],
+                  "staticFriction": 0.4, "kineticFriction": 0.3, "restitution": 0.2}],
+    "media": [{"name": "pool", "type": "water", "min": [-1, -1, 0], "max": [1, 1, 1]}]})");
+  const std::vector<Variable> vars = rigidfmu::modelVariables(scene);
+  struct Row {
+    const char* name;
+    double start;
+    const char* unit;
+  };
+  const Row rows[] = {{"b.staticFriction", 0.7, "1"},   {"b.kineticFriction", 0.5, "1"},
+                      {"floor.staticFriction", 0.4, "1"}, {"floor.kineticFriction", 0.3, "1"},
+                      {"floor.restitution", 0.2, "1"},   {"pool.density", 998.2, "kg/m3"},
+                      {"pool.viscosity", 1.002e-3, "Pa.s"}};
+  rigid::WorldModel model = scene.model;
+  rigid::WorldData data = rigid::initialData(model);
+  for (const Row& r : rows) {
+    SCOPED_TRACE(r.name);
+    const Variable& v = find(vars, r.name);
+    EXPECT_EQ(v.causality, Causality::Parameter);
+    EXPECT_EQ(v.variability, rigidfmu::Variability::Tunable);
+    EXPECT_EQ(v.unit, r.unit);
+    EXPECT_FALSE(v.description.empty());
+    EXPECT_DOUBLE_EQ(rigidfmu::readValue(v, model, data, Phase::Setup), r.start);
+    EXPECT_EQ(rigidfmu::writeValue(v, 0.25, model, data, Phase::Running), "");
+    EXPECT_EQ(rigidfmu::readValue(v, model, data, Phase::Running), 0.25);
+    EXPECT_EQ(rigidfmu::writeValue(v, -0.1, model, data, Phase::Running).rfind(std::string(r.name) + ": must be", 0),
+              0u);
+    EXPECT_NE(rigidfmu::writeValue(v, std::nan(""), model, data, Phase::Running).find("finite"), std::string::npos);
+  }
+  EXPECT_EQ(rigidfmu::writeValue(find(vars, "floor.restitution"), 1.5, model, data, Phase::Running),
+            "floor.restitution: must be in [0, 1], got 1.5");
+  // the earlier variables keep their value references: the new ones come last
+  EXPECT_EQ(vars.back().name, "pool.viscosity");
+  EXPECT_LT(find(vars, "b.contacts").vr, find(vars, "b.staticFriction").vr);
+  // mu_k above mu_s: refused when the pair takes effect, naming both
+  EXPECT_EQ(rigidfmu::frictionConflict(model), "");
+  model.surfaces[0].kineticFriction = 0.5;
+  EXPECT_EQ(rigidfmu::frictionConflict(model),
+            "floor.kineticFriction: must be <= floor.staticFriction (0.25), got 0.5");
 }

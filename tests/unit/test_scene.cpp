@@ -159,6 +159,21 @@ TEST(Scene, SleepRules) {
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"sleepTime": 0}, )"), "solver.sleepTime: must be > 0, got 0");
 }
 
+// Their FMU variables are NAME.field: a body and a surface named alike would share
+// NAME.staticFriction.
+TEST(Scene, BodiesSurfacesAndMediaShareOneNameSpace) {
+  const std::string floorNamedB =
+      R"("surfaces": [{"name": "b", "min": [-1, -1, -1], "max": [1, 1, 0]}], )";
+  EXPECT_SCENE_ERROR(sceneWith("", floorNamedB),
+                     "surfaces[0].name: \"b\" is also the name of bodies[0]; bodies, surfaces and media share one "
+                     "name space (their FMU variables are NAME.field)");
+  const std::string poolNamedFloor = R"("surfaces": [{"name": "floor", "min": [-1, -1, -1], "max": [1, 1, 0]}],
+      "media": [{"name": "floor", "min": [-1, -1, 0], "max": [1, 1, 1]}], )";
+  EXPECT_SCENE_ERROR(sceneWith("", poolNamedFloor),
+                     "media[0].name: \"floor\" is also the name of surfaces[0]; bodies, surfaces and media share one "
+                     "name space (their FMU variables are NAME.field)");
+}
+
 TEST(Scene, NameNotIdentifier) {
   EXPECT_SCENE_ERROR(R"({"name": "2fast", "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1}]})",
                      "name: must be a C identifier ([A-Za-z_][A-Za-z0-9_]*), got \"2fast\"");

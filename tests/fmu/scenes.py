@@ -36,3 +36,18 @@ def two_bodies():
              position=[-4.0, 5.0, -6.0], velocity=[7.0, -8.0, 9.0],
              angularVelocity=[-1.5, 2.5, -3.5], restitution=0.1),
     ], gravity=(0.5, -0.25, -9.5), method="euler", step=2e-3)
+
+
+def floor(mus=0.5, muk=0.5, xi=0.0, half=5.0):
+    """A floor whose top face is z = 0."""
+    return {"name": "floor", "min": [-half, -half, -1], "max": [half, half, 0],
+            "staticFriction": mus, "kineticFriction": muk, "restitution": xi}
+
+
+def cube_on_floor(name, edge, floor_friction=0.5, **fields):
+    """A cube "box" set down on a floor, its face on the floor's top (step 1 ms)."""
+    box = body("box", shape={"type": "box", "size": [edge] * 3}, position=[0, 0, edge / 2],
+               restitution=0.0, **fields)
+    s = scene(name, [box], step=1e-3)
+    s["surfaces"] = [floor(floor_friction, floor_friction)]
+    return s

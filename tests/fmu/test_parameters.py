@@ -17,13 +17,8 @@ V0 = 2.0  # m/s, the box's start velocity along x
 def sliding_box():
     """A cube sliding on a floor at V0. The cube's friction is 1, so a pair's
     coefficient is sqrt(1 * the floor's) (geometric mean)."""
-    box = scenes.body("box", shape={"type": "box", "size": [EDGE] * 3}, mass=1.0,
-                      position=[0, 0, EDGE / 2], velocity=[V0, 0, 0], restitution=0.0,
-                      staticFriction=1.0, kineticFriction=1.0)
-    s = scenes.scene("SlidingBox", [box], step=1e-3)
-    s["surfaces"] = [{"name": "floor", "min": [-5, -5, -1], "max": [5, 5, 0],
-                      "staticFriction": 0.6, "kineticFriction": 0.6, "restitution": 0.0}]
-    return s
+    return scenes.cube_on_floor("SlidingBox", EDGE, floor_friction=0.6, mass=1.0, velocity=[V0, 0, 0],
+                                staticFriction=1.0, kineticFriction=1.0)
 
 
 @pytest.fixture(scope="module")

@@ -11,12 +11,7 @@ H = 0.01  # s, the communication step
 
 
 def resting_box():
-    box = scenes.body("box", shape={"type": "box", "size": [EDGE] * 3}, mass=2.0,
-                      position=[0, 0, EDGE / 2], restitution=0.0)
-    s = scenes.scene("SleepingBox", [box], step=1e-3)
-    s["surfaces"] = [{"name": "floor", "min": [-5, -5, -1], "max": [5, 5, 0],
-                      "staticFriction": 0.5, "kineticFriction": 0.5, "restitution": 0.0}]
-    return s
+    return scenes.cube_on_floor("SleepingBox", EDGE, mass=2.0)
 
 
 @pytest.fixture(scope="module")

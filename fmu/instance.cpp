@@ -354,7 +354,7 @@ Instance::Interval Instance::advance(double h, bool report) {
     const std::vector<rigid::BodyInput>& inputs;
     ~Restore() {
       d.input = inputs;
-      std::fill(d.inputRate.begin(), d.inputRate.end(), rigid::BodyInput{});
+      for (rigid::BodyInput& rate : d.inputRate) rate = rigid::zeroInput(rate.loads.size());
     }
   } restore{data_, setInputs};
   for (long k = 0; k < n; ++k) {
@@ -364,6 +364,8 @@ Instance::Interval Instance::advance(double h, bool report) {
     for (size_t b = 0; b < data_.input.size(); ++b) {
       data_.input[b].force = setInputs[b].force + mid * data_.inputRate[b].force;
       data_.input[b].torque = setInputs[b].torque + mid * data_.inputRate[b].torque;
+      for (size_t k = 0; k < data_.input[b].loads.size(); ++k)
+        data_.input[b].loads[k] = setInputs[b].loads[k] + mid * data_.inputRate[b].loads[k];
     }
     const rigid::StepResult r = rigid::step(model_, data_, to - from);
     if (!r.ok) return {r, from, to};
@@ -537,7 +539,10 @@ fmi2Status Instance::setInputDerivatives(const fmi2ValueReference vr[], size_t n
     if (!std::isfinite(value[i]))
       return error("fmi2SetRealInputDerivatives: " + v->name + ": must be finite, got " + num(value[i]));
     rigid::BodyInput& rate = data_.inputRate[v->body];
-    (v->quantity == Quantity::Force ? rate.force : rate.torque)[v->component] = value[i];
+    rigid::Vec3& of = v->quantity == Quantity::Force    ? rate.force
+                      : v->quantity == Quantity::Torque ? rate.torque
+                                                        : rate.loads[static_cast<size_t>(v->load)];
+    of[v->component] = value[i];
   }
   return fmi2OK;
 }

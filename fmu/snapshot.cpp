@@ -70,6 +70,13 @@ std::string readContactMemory(Reader& r, Snapshot& out, bool& ok) {
   return "";
 }
 
+// A body's load forces and their rates (as many as the scene gives it).
+bool readLoads(Reader& r, rigid::BodyInput& input, rigid::BodyInput& rate) {
+  for (size_t k = 0; k < input.loads.size(); ++k)
+    if (!r.get(input.loads[k]) || !r.get(rate.loads[k])) return false;
+  return true;
+}
+
 // Friction, densities and viscosities finite and >= 0, restitutions in [0, 1].
 bool materialsInRange(const rigid::WorldModel& m) {
   auto ok = [](double v) { return std::isfinite(v) && v >= 0.0; };
@@ -111,6 +118,8 @@ std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
     w.put(y.X), w.put(y.q), w.put(y.P), w.put(y.L);
     w.put(s.data.input[i].force), w.put(s.data.input[i].torque);
     w.put(s.data.inputRate[i].force), w.put(s.data.inputRate[i].torque);
+    for (size_t k = 0; k < s.data.input[i].loads.size(); ++k)
+      w.put(s.data.input[i].loads[k]), w.put(s.data.inputRate[i].loads[k]);
     w.put(static_cast<int32_t>(s.data.contacts[i]));
     w.put(s.data.audit.energy[i]), w.put(s.data.audit.reference[i]), w.put(s.data.audit.carried[i]);
     w.put(static_cast<uint8_t>(s.data.sleep.asleep[i])), w.put(s.data.sleep.stillFor[i]);
@@ -168,7 +177,8 @@ std::string deserialize(const char* bytes, size_t size, const std::string& guid,
     uint8_t asleep = 0;
     ok = r.get(y.X) && r.get(y.q) && r.get(y.P) && r.get(y.L) && r.get(out.data.input[i].force) &&
          r.get(out.data.input[i].torque) && r.get(out.data.inputRate[i].force) &&
-         r.get(out.data.inputRate[i].torque) && r.get(contacts) &&
+         r.get(out.data.inputRate[i].torque) && readLoads(r, out.data.input[i], out.data.inputRate[i]) &&
+         r.get(contacts) &&
          r.get(out.data.audit.energy[i]) && r.get(out.data.audit.reference[i]) && r.get(out.data.audit.carried[i]) &&
          r.get(asleep) && r.get(out.data.sleep.stillFor[i]) && r.get(island);
     out.data.contacts[i] = contacts;

@@ -21,7 +21,8 @@ struct Snapshot {
 
 // Bumped whenever the layout below changes: an old serialisation is then refused.
 // 2: input derivatives; 3: energy audit, last step; 4: the contact solver's memory;
-// 5: which bodies sleep; 6: friction, surfaces' restitution, media's density and viscosity
+// 5: which bodies sleep; 6: friction, surfaces' restitution, media's density and
+// viscosity, forces at load points
 inline constexpr uint32_t kSnapshotVersion = 6;
 
 // The bytes of a snapshot of a scene with this GUID.

@@ -181,6 +181,23 @@ std::vector<Variable> modelVariables(const Scene& scene) {
     parameter(name, "viscosity", Quantity::MediumViscosity, mi, "Pa.s",
               "fluid dynamic viscosity, >= 0 (the drag's linear term)");
   }
+  // Forces at the bodies' load points, last too.
+  for (size_t b = 0; b < bodies.size(); ++b) {
+    for (size_t k = 0; k < bodies[b].loads.size(); ++k) {
+      const rigid::PointLoad& load = bodies[b].loads[k];
+      const std::string at = "(" + fmt(load.point.x()) + ", " + fmt(load.point.y()) + ", " + fmt(load.point.z()) +
+                             ") m from the centre of mass, body frame";
+      for (int c = 0; c < 3; ++c) {
+        Variable v{0, bodies[b].name + "." + load.name + ".force[" + std::to_string(c + 1) + "]", Quantity::LoadForce,
+                   static_cast<int>(b), c, Causality::Input, Variability::Continuous, Initial::None, BaseType::Real,
+                   "N",
+                   bodies[b].name + ": force at its load point " + load.name + " " + at + ", in the " +
+                       (load.bodyFrame ? "body" : "world") + " frame, " + kAxis[c]};
+        v.load = static_cast<int>(k);
+        add(v);
+      }
+    }
+  }
   return vars;
 }
 
@@ -240,6 +257,7 @@ double readValue(const Variable& v, const WorldModel& model, const WorldData& da
       return setup ? vectorPart(rigid::initialState(model.bodies[b]).L, c) : data.Y[b].L[c];
     case Quantity::Force: return data.input[b].force[c];
     case Quantity::Torque: return data.input[b].torque[c];
+    case Quantity::LoadForce: return data.input[b].loads[static_cast<size_t>(v.load)][c];
     case Quantity::Contacts: return setup ? 0.0 : static_cast<double>(data.contacts[b]);
   }
   return 0.0;
@@ -329,6 +347,9 @@ std::string writeValue(const Variable& v, double value, WorldModel& model, World
       return "";
     case Quantity::Torque:
       data.input[b].torque[c] = value;
+      return "";
+    case Quantity::LoadForce:
+      data.input[b].loads[static_cast<size_t>(v.load)][c] = value;
       return "";
     case Quantity::Contacts:
       return v.name + ": a calculated output; it cannot be set";

@@ -21,7 +21,7 @@ enum class Quantity {
   Mass, Restitution, StaticFriction, KineticFriction,
   SurfaceStaticFriction, SurfaceKineticFriction, SurfaceRestitution, MediumDensity, MediumViscosity,
   Position, Orientation, Velocity, AngularVelocity, LinearMomentum, AngularMomentum,
-  Force, Torque,
+  Force, Torque, LoadForce,
   Contacts,
 };
 
@@ -37,6 +37,7 @@ struct Variable {
   BaseType type = BaseType::Real;
   std::string unit;         // Real only
   std::string description;
+  int load = -1;            // LoadForce: which of the body's load points
 };
 
 // Every variable of the scene's FMU, in value-reference order.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "math_types.h"
 #include "shape.h"
@@ -15,6 +16,15 @@ struct BodyStart {
   Quat orientation = Quat::Identity();  // body -> world; need not be unit until the run starts
   Vec3 velocity = Vec3::Zero();         // m/s, world frame
   Vec3 angularVelocity = Vec3::Zero();  // rad/s, world frame
+};
+
+// A named point of a body where an input force acts (the scene's "loads"): a thruster,
+// a cable, a wheel load. The force and its moment r x F act in every force stage, r
+// turning with the body.
+struct PointLoad {
+  std::string name;
+  Vec3 point = Vec3::Zero();  // m, body frame, from the centre of mass
+  bool bodyFrame = false;     // the force input is given in the body frame (else the world's)
 };
 
 // Body constants: fixed once a run starts.
@@ -31,6 +41,7 @@ struct BodyConstants {
   double staticFriction = 0.6;        // mu_s, 1
   double kineticFriction = 0.4;       // mu_k, 1
   bool collides = true;               // takes part in body-body collision detection
+  std::vector<PointLoad> loads;       // points where input forces act
   BodyStart start;
 };
 
@@ -71,7 +82,23 @@ struct BodyAux {
 struct BodyInput {
   Vec3 force = Vec3::Zero();   // N, at the centre of mass, world frame
   Vec3 torque = Vec3::Zero();  // N m, world frame
+  std::vector<Vec3> loads;     // N, one per PointLoad of the body, in its frame
 };
+
+// The input of a body with `loads` load points, all zero.
+inline BodyInput zeroInput(size_t loads) {
+  BodyInput in;
+  in.loads.assign(loads, Vec3::Zero());
+  return in;
+}
+
+// Whether an input drives its body: some force, torque or load not zero.
+inline bool drives(const BodyInput& in) {
+  if (!in.force.isZero(0.0) || !in.torque.isZero(0.0)) return true;
+  for (const Vec3& f : in.loads)
+    if (!f.isZero(0.0)) return true;
+  return false;
+}
 
 // R of the unit quaternion q / |q| for any q != 0 (Runge-Kutta stages are not unit):
 // each product of two components is scaled by 2 / |q|^2, which costs a division

@@ -8,10 +8,22 @@ namespace rigid {
 
 bool forcesHeldOverStep(const WorldModel& model) { return model.media.empty(); }
 
+bool forcesHeldOverStep(const WorldModel& model, const BodyConstants& body) {
+  return forcesHeldOverStep(model) && body.loads.empty();
+}
+
 void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
                              const BodyInput& in, const BodyState& y, BodyAux& aux) {
   aux.F = body.mass * model.gravity + in.force;
   aux.T = in.torque;
+  // loads at points: the force (turned into the world frame when given in the body's)
+  // and its moment r x F about the centre of mass, r = R p turning with the body
+  for (size_t k = 0; k < body.loads.size(); ++k) {
+    const PointLoad& load = body.loads[k];
+    const Vec3 F = load.bodyFrame ? Vec3(aux.R * in.loads[k]) : in.loads[k];
+    aux.F += F;
+    aux.T += (aux.R * load.point).cross(F);
+  }
   if constexpr (modules::kMedia) {
     for (const Medium& medium : model.media) addMediumForces(medium, body, y, model.gravity, aux);
   } else {

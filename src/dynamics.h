@@ -21,6 +21,9 @@ inline Eigen::Vector4d orientationRate(const Vec3& omega, const Quat& q) {
 // (held over each step) only, with no media (buoyancy and drag follow the state).
 // Contacts act after the step (contact_solver.h), not as forces.
 bool forcesHeldOverStep(const WorldModel& model);
+// The same for one body: also no load at a point, whose moment (and, in the body frame,
+// force) turns with the body.
+bool forcesHeldOverStep(const WorldModel& model, const BodyConstants& body);
 
 // Every force on one body: gravity, the inputs, the media. Adds to nothing: sets
 // aux.F and aux.T. aux's V, R and omega must be those of y.

@@ -141,8 +141,7 @@ void rk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>
   const int n = static_cast<int>(d.Y.size());
   held.clear();
   felt.clear();
-  const bool heldForces = forcesHeldOverStep(m);
-  for (int i = 0; i < n; ++i) (heldForces ? held : felt).push_back(i);
+  for (int i = 0; i < n; ++i) (forcesHeldOverStep(m, m.bodies[i]) ? held : felt).push_back(i);
   if (!held.empty()) rk4HeldForcesStep(m, d, h, held, next);
   if (!felt.empty()) rk4Bodies(m, d, h, felt, next);
 }

@@ -202,11 +202,34 @@ Mat3 readInertia(const json& j, const std::string& path) {
   return 0.5 * (I + I.transpose());
 }
 
+// "loads": [{"name", "point" (m, body frame, from the centre of mass), "frame":
+// "world" (default) or "body", the frame of the force input}], names unique in the body.
+std::vector<PointLoad> readLoads(const Object& body) {
+  std::vector<PointLoad> loads;
+  if (!body.has("loads")) return loads;
+  const json& list = body.at("loads");
+  if (!list.is_array()) fail(body.path("loads"), "must be an array of load points");
+  std::set<std::string> names;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const Object o(list[i], body.path("loads") + "[" + std::to_string(i) + "]", {"name", "point", "frame"});
+    PointLoad load;
+    load.name = identifier(o, "name");
+    if (!names.insert(load.name).second) fail(o.path("name"), "\"" + load.name + "\" is used twice in this body");
+    if (!o.has("point")) fail(o.path("point"), "is required (m, body frame, from the centre of mass)");
+    load.point = o.vec3("point", Vec3::Zero());
+    const std::string frame = o.string("frame", "world");
+    if (frame != "world" && frame != "body") fail(o.path("frame"), "must be \"world\" or \"body\", got \"" + frame + "\"");
+    load.bodyFrame = frame == "body";
+    loads.push_back(load);
+  }
+  return loads;
+}
+
 BodyConstants readBody(const json& j, const std::string& path) {
   Object o(j, path,
            {"name", "shape", "mass", "inertia", "position", "orientation", "velocity",
             "angularVelocity", "restitution", "staticFriction", "kineticFriction", "collision",
-            "outputs", "inputs"});
+            "outputs", "inputs", "loads"});
   BodyConstants b;
   b.name = identifier(o, "name");
   if (!o.has("shape")) fail(o.path("shape"), "is required");
@@ -220,6 +243,7 @@ BodyConstants readBody(const json& j, const std::string& path) {
   b.restitution = inRange(o, "restitution", defaults::kRestitution, 0.0, 1.0);
   friction(o, b.staticFriction, b.kineticFriction);
   b.collides = o.boolean("collision", true);
+  b.loads = readLoads(o);
   return b;
 }
 

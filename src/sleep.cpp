@@ -22,8 +22,6 @@ void wakeIsland(SleepState& s, int island) {
   }
 }
 
-bool driven(const BodyInput& u) { return !u.force.isZero(0.0) || !u.torque.isZero(0.0); }
-
 // The order of the detector's pairs, which the contact memory keeps.
 auto pairKey(const ContactMemory& m) {
   return std::make_tuple(m.a, m.b < 0 ? 1 : 0, m.b >= 0 ? m.b : m.surface);
@@ -35,7 +33,7 @@ bool wakeDriven(WorldData& data) {
   SleepState& s = data.sleep;
   bool woke = false;
   for (size_t i = 0; i < s.asleep.size() && s.sleeping > 0; ++i) {
-    if (!s.asleep[i] || !(driven(data.input[i]) || driven(data.inputRate[i]))) continue;
+    if (!s.asleep[i] || !(drives(data.input[i]) || drives(data.inputRate[i]))) continue;
     wakeIsland(s, s.island[i]);
     woke = true;
   }
@@ -68,7 +66,7 @@ void updateSleep(const WorldModel& model, WorldData& data, double h, CollisionCa
   for (int i = 0; i < n; ++i) {
     if (s.asleep[i]) continue;
     const double speed = data.aux[i].V.norm() + data.aux[i].omega.norm() * cache.boundingRadius[i];
-    const bool still = speed < model.sleep.speed && !driven(data.input[i]) && !driven(data.inputRate[i]);
+    const bool still = speed < model.sleep.speed && !drives(data.input[i]) && !drives(data.inputRate[i]);
     s.stillFor[i] = still ? s.stillFor[i] + h : 0.0;
   }
   // Islands of the awake bodies (a sleeping body has no contacts: the detector skips

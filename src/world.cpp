@@ -28,8 +28,10 @@ WorldData initialData(const WorldModel& model) {
   WorldData d;
   d.Y.reserve(n);
   for (const BodyConstants& body : model.bodies) d.Y.push_back(initialState(body));
-  d.input.assign(n, BodyInput{});
-  d.inputRate.assign(n, BodyInput{});
+  for (const BodyConstants& body : model.bodies) {
+    d.input.push_back(zeroInput(body.loads.size()));
+    d.inputRate.push_back(zeroInput(body.loads.size()));
+  }
   d.aux.resize(n);
   d.contacts.assign(n, 0);
   d.sleep = awakeState(n);

@@ -34,7 +34,7 @@ from harness import STATUS, Recorder, Slave
 TESTS = pathlib.Path(__file__).resolve().parent
 ROOT = TESTS.parents[1]
 SCENE_DIR = ROOT / "scripts" / "scenes"
-EXAMPLES = ["default.json", "spinner.json", "tumble.json"]
+EXAMPLES = ["default.json", "spinner.json", "tumble.json", "thruster.json"]
 # Set by scripts/sanitize.sh: the FMUs are the ASan/UBSan build and the runtimes are
 # preloaded (LD_PRELOAD) into this process and its children.
 SANITIZED = os.environ.get("RIGIDFMU_SANITIZED") == "1"
@@ -646,6 +646,7 @@ def run_child(code, tmp_path, timeout):
     ("default.json", FUZZ_SEEDS, FUZZ_CALLS),
     ("spinner.json", FUZZ_SEEDS, FUZZ_CALLS),
     ("tumble.json", FUZZ_SEEDS, FUZZ_CALLS),
+    ("thruster.json", FUZZ_SEEDS, FUZZ_CALLS),
     # once aborted the process inside FCL (see FCL_GJK_ABORT); fixed: states beyond 1e12 m
     # or non-finite are refused before collision detection sees them
     pytest.param("default.json", [105], 800, id="default.json-seed105"),

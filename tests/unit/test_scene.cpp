@@ -174,6 +174,24 @@ TEST(Scene, BodiesSurfacesAndMediaShareOneNameSpace) {
                      "name space (their FMU variables are NAME.field)");
 }
 
+TEST(Scene, LoadPoints) {
+  const rigid::WorldModel m = rigid::parseScene(sceneWith(
+      R"(, "loads": [{"name": "thruster", "point": [0, 0, -0.1], "frame": "body"}, {"name": "cable", "point": [0.1, 0, 0]}])"))
+                                  .model;
+  ASSERT_EQ(m.bodies[0].loads.size(), 2u);
+  EXPECT_EQ(m.bodies[0].loads[0].name, "thruster");
+  EXPECT_EQ(m.bodies[0].loads[0].point, rigid::Vec3(0, 0, -0.1));
+  EXPECT_TRUE(m.bodies[0].loads[0].bodyFrame);
+  EXPECT_FALSE(m.bodies[0].loads[1].bodyFrame);  // the world frame by default, as b.force
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "loads": {"name": "x"})"), "bodies[0].loads: must be an array of load points");
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "loads": [{"name": "x"}])"),
+                     "bodies[0].loads[0].point: is required (m, body frame, from the centre of mass)");
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "loads": [{"name": "x", "point": [0, 0, 0], "frame": "local"}])"),
+                     "bodies[0].loads[0].frame: must be \"world\" or \"body\", got \"local\"");
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "loads": [{"name": "x", "point": [0, 0, 0]}, {"name": "x", "point": [1, 0, 0]}])"),
+                     "bodies[0].loads[1].name: \"x\" is used twice in this body");
+}
+
 TEST(Scene, NameNotIdentifier) {
   EXPECT_SCENE_ERROR(R"({"name": "2fast", "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1}]})",
                      "name: must be a C identifier ([A-Za-z_][A-Za-z0-9_]*), got \"2fast\"");

@@ -294,6 +294,7 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
   if (ratio > 1e12)
     return error("fmi2DoStep: communicationStepSize " + num(h) + " s needs more than 1e12 steps of solver.step = " +
                  num(model_.maxStep) + " s");
+  rigid::clearContactLoads(data_);  // the contact loads are this step's
   const Interval run = advance(h, true);
   lastStepSize_ = h;
   if (!run.result.ok) {

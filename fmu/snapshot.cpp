@@ -70,6 +70,27 @@ std::string readContactMemory(Reader& r, Snapshot& out, bool& ok) {
   return "";
 }
 
+// The forces that sleeping bodies keep giving surfaces: each names a sleeping body and
+// a surface of this scene.
+std::string readRestingPushes(Reader& r, Snapshot& out, bool& ok) {
+  uint32_t count = 0;
+  ok = ok && r.get(count);
+  if (!ok) return "";
+  const size_t bodies = out.model.bodies.size(), surfaces = out.model.surfaces.size();
+  if (count > 64u * bodies) return "the serialized state is corrupt (resting forces)";
+  out.data.sleep.resting.assign(count, rigid::RestingPush{});
+  for (rigid::RestingPush& p : out.data.sleep.resting) {
+    int32_t body = 0, surface = 0;
+    ok = ok && r.get(body) && r.get(surface) && r.get(p.force);
+    if (!ok) return "";
+    if (body < 0 || static_cast<size_t>(body) >= bodies || surface < 0 || static_cast<size_t>(surface) >= surfaces ||
+        !out.data.sleep.asleep[static_cast<size_t>(body)])
+      return "the serialized state is corrupt (a resting force names no sleeping body or surface of this scene)";
+    p.body = body, p.surface = surface;
+  }
+  return "";
+}
+
 // A body's load forces and their rates (as many as the scene gives it).
 bool readLoads(Reader& r, rigid::BodyInput& input, rigid::BodyInput& rate) {
   for (size_t k = 0; k < input.loads.size(); ++k)
@@ -124,7 +145,14 @@ std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
     w.put(s.data.audit.energy[i]), w.put(s.data.audit.reference[i]), w.put(s.data.audit.carried[i]);
     w.put(static_cast<uint8_t>(s.data.sleep.asleep[i])), w.put(s.data.sleep.stillFor[i]);
     w.put(static_cast<int32_t>(s.data.sleep.island[i]));
+    w.put(s.data.sleep.restForce[i]), w.put(s.data.sleep.restTorque[i]);
+    w.put(s.data.contactLoads.impulse[i]), w.put(s.data.contactLoads.angularImpulse[i]);
   }
+  for (const rigid::Vec3& J : s.data.contactLoads.surfaceImpulse) w.put(J);
+  w.put(s.data.contactLoads.duration);
+  w.put(static_cast<uint32_t>(s.data.sleep.resting.size()));
+  for (const rigid::RestingPush& p : s.data.sleep.resting)
+    w.put(static_cast<int32_t>(p.body)), w.put(static_cast<int32_t>(p.surface)), w.put(p.force);
   w.put(static_cast<int64_t>(s.data.steps));
   w.put(s.data.errorEstimate);
   w.put(s.data.scratch.adaptiveStep);
@@ -180,7 +208,9 @@ std::string deserialize(const char* bytes, size_t size, const std::string& guid,
          r.get(out.data.inputRate[i].torque) && readLoads(r, out.data.input[i], out.data.inputRate[i]) &&
          r.get(contacts) &&
          r.get(out.data.audit.energy[i]) && r.get(out.data.audit.reference[i]) && r.get(out.data.audit.carried[i]) &&
-         r.get(asleep) && r.get(out.data.sleep.stillFor[i]) && r.get(island);
+         r.get(asleep) && r.get(out.data.sleep.stillFor[i]) && r.get(island) &&
+         r.get(out.data.sleep.restForce[i]) && r.get(out.data.sleep.restTorque[i]) &&
+         r.get(out.data.contactLoads.impulse[i]) && r.get(out.data.contactLoads.angularImpulse[i]);
     out.data.contacts[i] = contacts;
     if (ok && (asleep > 1 || island < -1 || island >= static_cast<int32_t>(n) || (asleep == 1) != (island >= 0)))
       return "the serialized state is corrupt (sleep of body " + std::to_string(i) + ")";
@@ -189,6 +219,9 @@ std::string deserialize(const char* bytes, size_t size, const std::string& guid,
   }
   out.data.sleep.sleeping =
       static_cast<int>(std::count(out.data.sleep.asleep.begin(), out.data.sleep.asleep.end(), 1));
+  for (rigid::Vec3& J : out.data.contactLoads.surfaceImpulse) ok = ok && r.get(J);
+  ok = ok && r.get(out.data.contactLoads.duration);
+  if (std::string why = readRestingPushes(r, out, ok); !why.empty()) return why;
   int64_t steps = 0;
   ok = ok && r.get(steps) && r.get(out.data.errorEstimate) && r.get(out.data.scratch.adaptiveStep);
   if (std::string why = readContactMemory(r, out, ok); !why.empty()) return why;

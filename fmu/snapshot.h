@@ -22,8 +22,8 @@ struct Snapshot {
 // Bumped whenever the layout below changes: an old serialisation is then refused.
 // 2: input derivatives; 3: energy audit, last step; 4: the contact solver's memory;
 // 5: which bodies sleep; 6: friction, surfaces' restitution, media's density and
-// viscosity, forces at load points
-inline constexpr uint32_t kSnapshotVersion = 6;
+// viscosity, forces at load points; 7: the contact loads, and those of sleeping bodies
+inline constexpr uint32_t kSnapshotVersion = 7;
 
 // The bytes of a snapshot of a scene with this GUID.
 std::vector<char> serialize(const Snapshot& s, const std::string& guid);

@@ -155,8 +155,9 @@ std::vector<Variable> modelVariables(const Scene& scene) {
   // when two or more collide): elsewhere it would be a parameter that changes nothing
   const auto& bodies = scene.model.bodies;
   const long colliding = std::count_if(bodies.begin(), bodies.end(), [](const BodyConstants& b) { return b.collides; });
+  auto touches = [&](size_t b) { return !scene.model.surfaces.empty() || (bodies[b].collides && colliding >= 2); };
   for (size_t b = 0; b < bodies.size(); ++b) {
-    if (scene.model.surfaces.empty() && !(bodies[b].collides && colliding >= 2)) continue;
+    if (!touches(b)) continue;
     const std::string& name = bodies[b].name;
     parameter(name, "staticFriction", Quantity::StaticFriction, static_cast<int>(b), "1",
               std::string("static friction coefficient mu_s, >= kineticFriction") + combined);
@@ -181,6 +182,30 @@ std::vector<Variable> modelVariables(const Scene& scene) {
     parameter(name, "viscosity", Quantity::MediumViscosity, mi, "Pa.s",
               "fluid dynamic viscosity, >= 0 (the drag's linear term)");
   }
+  // The contact loads of the last communication step (its impulses over its length),
+  // where something can touch: per body (its outputs list permitting) and per surface.
+  auto vector = [&](const std::string& name, Quantity q, int index, const char* unit, const std::string& meaning) {
+    for (int c = 0; c < 3; ++c)
+      add({0, name + "[" + std::to_string(c + 1) + "]", q, index, c, Causality::Output, Variability::Continuous,
+           Initial::Calculated, BaseType::Real, unit, meaning + ", " + kAxis[c]});
+  };
+  const char* mean = "mean over the last communication step (its contact impulses, impacts included, divided by its "
+                     "length; 0 before the first)";
+  for (size_t b = 0; b < bodies.size(); ++b) {
+    if (!touches(b)) continue;
+    const std::set<std::string>& outputs = scene.variables[b].outputs;
+    const std::string& name = bodies[b].name;
+    if (outputs.count("contactForce"))
+      vector(name + ".contactForce", Quantity::ContactForce, static_cast<int>(b), "N",
+             name + ": force of its contacts (surfaces and bodies), world frame, " + mean);
+    if (outputs.count("contactTorque"))
+      vector(name + ".contactTorque", Quantity::ContactTorque, static_cast<int>(b), "N.m",
+             name + ": torque of its contacts about the centre of mass, world frame, " + mean);
+  }
+  for (size_t s = 0; s < scene.model.surfaces.size(); ++s)
+    if (scene.model.surfaces[s].forceOutput)
+      vector(scene.model.surfaces[s].name + ".force", Quantity::SurfaceForce, static_cast<int>(s), "N",
+             scene.model.surfaces[s].name + ": force the bodies exert on the surface, world frame, " + mean);
   // Forces at the bodies' load points, last too.
   for (size_t b = 0; b < bodies.size(); ++b) {
     for (size_t k = 0; k < bodies[b].loads.size(); ++k) {
@@ -259,6 +284,16 @@ double readValue(const Variable& v, const WorldModel& model, const WorldData& da
     case Quantity::Torque: return data.input[b].torque[c];
     case Quantity::LoadForce: return data.input[b].loads[static_cast<size_t>(v.load)][c];
     case Quantity::Contacts: return setup ? 0.0 : static_cast<double>(data.contacts[b]);
+    case Quantity::ContactForce:
+    case Quantity::ContactTorque:
+    case Quantity::SurfaceForce: {
+      const WorldData::ContactLoads& loads = data.contactLoads;
+      if (setup || !(loads.duration > 0.0)) return 0.0;
+      const std::vector<rigid::Vec3>& of = v.quantity == Quantity::ContactForce    ? loads.impulse
+                                           : v.quantity == Quantity::ContactTorque ? loads.angularImpulse
+                                                                                  : loads.surfaceImpulse;
+      return of[static_cast<size_t>(b)][c] / loads.duration;
+    }
   }
   return 0.0;
 }
@@ -352,6 +387,9 @@ std::string writeValue(const Variable& v, double value, WorldModel& model, World
       data.input[b].loads[static_cast<size_t>(v.load)][c] = value;
       return "";
     case Quantity::Contacts:
+    case Quantity::ContactForce:
+    case Quantity::ContactTorque:
+    case Quantity::SurfaceForce:
       return v.name + ": a calculated output; it cannot be set";
   }
   return v.name + ": cannot be set";

@@ -22,7 +22,7 @@ enum class Quantity {
   SurfaceStaticFriction, SurfaceKineticFriction, SurfaceRestitution, MediumDensity, MediumViscosity,
   Position, Orientation, Velocity, AngularVelocity, LinearMomentum, AngularMomentum,
   Force, Torque, LoadForce,
-  Contacts,
+  Contacts, ContactForce, ContactTorque, SurfaceForce,
 };
 
 struct Variable {

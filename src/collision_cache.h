@@ -22,6 +22,10 @@ struct CollisionCache {
   std::vector<int> island;
   std::vector<char> grounded, ready;
   std::vector<ContactMemory> sleepingMemory, mergedMemory;
+  // the last solve's impulses: what the bodies gave the surfaces, each body's change of
+  // P and L (contact impulse and its moment), and P and L before it (buffers)
+  std::vector<SurfacePush> pushes;
+  std::vector<Vec3> stepImpulse, stepAngularImpulse, Pbefore, Lbefore;
 };
 
 }  // namespace rigid

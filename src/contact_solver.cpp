@@ -246,9 +246,11 @@ void impactRows(const Solver& s, std::vector<Row>& out) {
 
 // The seed's impulse at one merged point, j = -(1 + xi) vrel m_eff, then a Coulomb
 // friction impulse against the slip, |jt| <= mu j (static when it stops the slip).
-void impact(Solver& s, const Row& r, double vrel, std::vector<BodyState>& Y) {
+void impact(Solver& s, const Row& r, double vrel, std::vector<BodyState>& Y, std::vector<SurfacePush>& pushes) {
   const double j = -(1.0 + r.k.xi) * vrel * r.n.mass;
   applyImpulse(s, r, r.n, j, Y);
+  const bool onSurface = r.b == s.staticSlot();
+  if (onSurface) pushes.push_back({r.a, r.contact->surface, j * r.n.d});
   const SolverBody& A = s.bodies[r.a];
   const SolverBody& B = s.bodies[r.b];
   const Vec3 u = B.v + B.w.cross(r.rb) - A.v - A.w.cross(r.ra);
@@ -256,14 +258,16 @@ void impact(Solver& s, const Row& r, double vrel, std::vector<BodyState>& Y) {
   if (ut.norm() < 1e-15) return;
   const Axis t = axisOf(A, B, r.ra, r.rb, -ut.normalized());
   const double stick = ut.norm() * t.mass;
-  applyImpulse(s, r, t, stick <= r.k.mus * j ? stick : r.k.muk * j, Y);
+  const double jt = stick <= r.k.mus * j ? stick : r.k.muk * j;
+  applyImpulse(s, r, t, jt, Y);
+  if (onSurface) pushes.back().impulse += jt * t.d;
 }
 
 // Impacts as the seed answers them, before the solve and outside its accumulated
 // impulses (which would take a bounce back): passes over the pairs while one of them
 // approaches faster than a resting body can, so that a chain of touching bodies passes
 // an impact on (Newton's cradle). Returns the passes taken.
-int answerImpacts(Solver& s, const ContactStep& step, std::vector<BodyState>& Y) {
+int answerImpacts(Solver& s, const ContactStep& step, std::vector<BodyState>& Y, std::vector<SurfacePush>& pushes) {
   const bool any = std::any_of(s.rows.begin(), s.rows.end(), [&](const Row& r) {
     return r.depth >= -kTouching && relativeVelocity(s, r, r.n) < -step.restingSpeed;
   });
@@ -276,7 +280,7 @@ int answerImpacts(Solver& s, const ContactStep& step, std::vector<BodyState>& Y)
     for (const Row& r : rows) {
       const double vrel = relativeVelocity(s, r, r.n);
       if (vrel >= -step.restingSpeed) continue;
-      impact(s, r, vrel, Y);
+      impact(s, r, vrel, Y, pushes);
       struck = true;
     }
     if (struck) ++passes;
@@ -747,6 +751,24 @@ void store(const Solver& s, double slideSpeed, std::vector<ContactMemory>& memor
   }
 }
 
+// The accumulated impulses of the rows on surfaces, one push per body and surface
+// (rows come grouped by pair).
+void pushSurfaces(const Solver& s, std::vector<SurfacePush>& pushes) {
+  for (size_t i = 0; i < s.rows.size();) {
+    const size_t end = pairEnd(s, i);
+    if (s.rows[i].b != s.staticSlot()) {
+      i = end;
+      continue;
+    }
+    SurfacePush p{s.rows[i].a, s.rows[i].contact->surface, Vec3::Zero()};
+    for (; i < end; ++i) {
+      const Row& r = s.rows[i];
+      p.impulse += r.lambdaN * r.n.d + r.lambdaT1 * r.t1.d + r.lambdaT2 * r.t2.d;
+    }
+    pushes.push_back(p);
+  }
+}
+
 void countTouching(const std::vector<Contact>& contacts, std::vector<int>& count) {
   for (const Contact& c : contacts) {
     if (c.depth < -kTouching) continue;
@@ -759,8 +781,10 @@ void countTouching(const std::vector<Contact>& contacts, std::vector<int>& count
 
 ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Contact>& contacts,
                                  const ContactStep& step, std::vector<ContactMemory>& memory,
-                                 std::vector<BodyState>& Y, std::vector<int>& count, ContactScratchPtr& scratch) {
+                                 std::vector<BodyState>& Y, std::vector<int>& count, ContactScratchPtr& scratch,
+                                 std::vector<SurfacePush>& pushes) {
   ContactSolveReport report;
+  pushes.clear();
   countTouching(contacts, count);
   if (!scratch) scratch.reset(new ContactScratch);
   Solver& s = *scratch;
@@ -770,11 +794,12 @@ ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Cont
   prepareRows(model, contacts, step, Y, s);
   report.points = static_cast<int>(s.rows.size());
   markVelocities(s);
-  report.impactPasses = answerImpacts(s, step, Y);
+  report.impactPasses = answerImpacts(s, step, Y, pushes);
   warmStart(memory, s, Y);
   solveVelocities(s, Y, report);
   correctPositions(s, step, Y);
   store(s, std::max(kVelocityTolerance, 0.01 * step.restingSpeed), memory);
+  pushSurfaces(s, pushes);
   return report;
 }
 

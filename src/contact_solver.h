@@ -32,6 +32,14 @@ struct ContactStep {
   double moveShare = 0.5;
 };
 
+// What a solve gave one surface through one body's points (impulses, impacts
+// included): the impulse on the surface, N s, world frame.
+struct SurfacePush {
+  int body = -1;
+  int surface = -1;
+  Vec3 impulse = Vec3::Zero();
+};
+
 struct ContactSolveReport {
   int points = 0;             // contact points answered
   int iterations = 0;         // velocity iterations taken
@@ -72,10 +80,12 @@ using ContactScratchPtr = std::unique_ptr<ContactScratch, ContactScratchDeleter>
 // margin; `contacts` sorted by pair as the detector returns them): changes P and L by
 // the impulses and X, q by the position correction. `memory` holds last step's points
 // on entry and this step's on return. Adds each body's touching points to count.
-// `scratch` holds no state between solves, only buffers (made on first use).
+// `scratch` holds no state between solves, only buffers (made on first use). `pushes`
+// is replaced by the impulses the bodies gave the surfaces, per body and surface.
 ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Contact>& contacts,
                                  const ContactStep& step, std::vector<ContactMemory>& memory,
-                                 std::vector<BodyState>& Y, std::vector<int>& count, ContactScratchPtr& scratch);
+                                 std::vector<BodyState>& Y, std::vector<int>& count, ContactScratchPtr& scratch,
+                                 std::vector<SurfacePush>& pushes);
 
 // Whether some contact of Y is a bouncing impact: overlapping, xi > 0, approaching
 // faster than restingSpeed (m/s). The step then locates the instant of impact.

@@ -258,15 +258,35 @@ void readBox(const Object& o, Vec3& min, Vec3& max) {
            "must be > min[" + std::to_string(i) + "] (" + num(min[i]) + "), got " + num(max[i]));
 }
 
+// A list of names, each one of `allowed`, no repeats; absent: all of `allowed`.
+std::set<std::string> nameList(const Object& o, const char* key, const std::vector<std::string>& allowed) {
+  if (!o.has(key)) return {allowed.begin(), allowed.end()};
+  const json& list = o.at(key);
+  if (!list.is_array()) fail(o.path(key), "must be an array of names");
+  std::string known;
+  for (const std::string& a : allowed) known += (known.empty() ? "" : ", ") + a;
+  std::set<std::string> names;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string path = o.path(key) + "[" + std::to_string(i) + "]";
+    if (!list[i].is_string()) fail(path, "must be a string, one of " + known);
+    const std::string name = list[i].get<std::string>();
+    if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
+      fail(path, "must be one of " + known + ", got \"" + name + "\"");
+    if (!names.insert(name).second) fail(path, "\"" + name + "\" is listed twice");
+  }
+  return names;
+}
+
 Surface readSurface(const json& j, const std::string& path) {
   Object o(j, path, {"name", "min", "max", "orientation", "staticFriction", "kineticFriction",
-                     "restitution"});
+                     "restitution", "outputs"});
   Surface s;
   s.name = identifier(o, "name");
   readBox(o, s.min, s.max);
   s.orientation = unitQuaternion(o, "orientation");
   friction(o, s.staticFriction, s.kineticFriction);
   s.restitution = inRange(o, "restitution", defaults::kRestitution, 0.0, 1.0);
+  s.forceOutput = nameList(o, "outputs", {"force"}).count("force") > 0;
   finishSurface(s);
   return s;
 }
@@ -301,24 +321,6 @@ Medium readMedium(const json& j, const std::string& path) {
   return m;
 }
 
-// A list of names, each one of `allowed`, no repeats; absent: all of `allowed`.
-std::set<std::string> nameList(const Object& o, const char* key, const std::vector<std::string>& allowed) {
-  if (!o.has(key)) return {allowed.begin(), allowed.end()};
-  const json& list = o.at(key);
-  if (!list.is_array()) fail(o.path(key), "must be an array of names");
-  std::string known;
-  for (const std::string& a : allowed) known += (known.empty() ? "" : ", ") + a;
-  std::set<std::string> names;
-  for (size_t i = 0; i < list.size(); ++i) {
-    const std::string path = o.path(key) + "[" + std::to_string(i) + "]";
-    if (!list[i].is_string()) fail(path, "must be a string, one of " + known);
-    const std::string name = list[i].get<std::string>();
-    if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
-      fail(path, "must be one of " + known + ", got \"" + name + "\"");
-    if (!names.insert(name).second) fail(path, "\"" + name + "\" is listed twice");
-  }
-  return names;
-}
 
 template <class T, class Read>
 std::vector<T> readList(const Object& o, const char* key, bool required, Read read) {

@@ -21,7 +21,7 @@ class SceneError : public std::runtime_error {
 // "inputs", lists of the names below; by default all of them.
 inline const std::vector<std::string> kBodyOutputs = {
     "position", "orientation", "velocity", "angularVelocity", "linearMomentum",
-    "angularMomentum", "contacts"};
+    "angularMomentum", "contacts", "contactForce", "contactTorque"};
 inline const std::vector<std::string> kBodyInputs = {"force", "torque"};
 struct BodyVariables {
   std::set<std::string> outputs;

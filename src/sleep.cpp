@@ -20,6 +20,9 @@ void wakeIsland(SleepState& s, int island) {
     s.stillFor[i] = 0.0;
     --s.sleeping;
   }
+  s.resting.erase(std::remove_if(s.resting.begin(), s.resting.end(),
+                                 [&](const RestingPush& p) { return !s.asleep[p.body]; }),
+                  s.resting.end());
 }
 
 // The order of the detector's pairs, which the contact memory keeps.
@@ -59,6 +62,18 @@ bool wakeTouched(const std::vector<Contact>& contacts, SleepState& s) {
   return woke;
 }
 
+void addRestingLoads(WorldData& data, double tau) {
+  const SleepState& s = data.sleep;
+  if (s.sleeping == 0) return;
+  WorldData::ContactLoads& loads = data.contactLoads;
+  for (size_t i = 0; i < s.asleep.size(); ++i) {
+    if (!s.asleep[i]) continue;
+    loads.impulse[i] += tau * s.restForce[i];
+    loads.angularImpulse[i] += tau * s.restTorque[i];
+  }
+  for (const RestingPush& p : s.resting) loads.surfaceImpulse[p.surface] += tau * p.force;
+}
+
 void updateSleep(const WorldModel& model, WorldData& data, double h, CollisionCache& cache) {
   if (!model.sleep.enabled) return;
   SleepState& s = data.sleep;
@@ -91,6 +106,10 @@ void updateSleep(const WorldModel& model, WorldData& data, double h, CollisionCa
     s.asleep[i] = 1;
     s.island[i] = root;
     ++s.sleeping;
+    s.restForce[i] = cache.stepImpulse[i] / h;
+    s.restTorque[i] = cache.stepAngularImpulse[i] / h;
+    for (const SurfacePush& p : cache.pushes)
+      if (p.body == i) s.resting.push_back({i, p.surface, p.impulse / h});
     data.Y[i].P.setZero();
     data.Y[i].L.setZero();
     data.aux[i].V.setZero();

@@ -29,6 +29,11 @@ void holdSleepers(const SleepState& s, const std::vector<BodyState>& Y, std::vec
 // detected again, with the woken islands' own.
 bool wakeTouched(const std::vector<Contact>& contacts, SleepState& s);
 
+// The loads of the sleeping bodies over a time tau added to WorldData::contactLoads:
+// each keeps the contact force and torque and the pushes on surfaces it had when it
+// fell asleep.
+void addRestingLoads(WorldData& data, double tau);
+
 // After a step of h: each awake body's stillness, then the islands of the cache's
 // contacts (the step's) that have been still long enough on a surface fall asleep
 // (velocities zeroed).

@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "math_types.h"
+
 namespace rigid {
 
 // Scene constants (solver.sleep, solver.sleepSpeed, solver.sleepTime).
@@ -14,12 +16,24 @@ struct SleepRules {
   double time = 0.5;    // s: an island still this long, resting on a surface, sleeps
 };
 
+// The force a sleeping body keeps giving a surface: the last awake step's, N.
+struct RestingPush {
+  int body = -1;
+  int surface = -1;
+  Vec3 force = Vec3::Zero();
+};
+
 // Part of a run's state (the FMU state carries it).
 struct SleepState {
   std::vector<char> asleep;      // per body
   std::vector<double> stillFor;  // s, per body: how long it has been still
   std::vector<int> island;       // per body: its sleeping island (a body index of it), -1 awake
   int sleeping = 0;              // bodies asleep
+  // The contact force and torque (N, N m) of each sleeping body and the forces it gives
+  // surfaces, as the last step before it slept measured them: a sleeping stack still
+  // reports its support (WorldData::contactLoads).
+  std::vector<Vec3> restForce, restTorque;
+  std::vector<RestingPush> resting;
 };
 
 // Every body awake, none still: the state a run starts from.
@@ -28,6 +42,8 @@ inline SleepState awakeState(size_t bodies) {
   s.asleep.assign(bodies, 0);
   s.stillFor.assign(bodies, 0.0);
   s.island.assign(bodies, -1);
+  s.restForce.assign(bodies, Vec3::Zero());
+  s.restTorque.assign(bodies, Vec3::Zero());
   return s;
 }
 
@@ -37,6 +53,7 @@ inline void wakeAll(SleepState& s) {
   s.asleep.assign(s.asleep.size(), 0);
   s.island.assign(s.island.size(), -1);
   s.stillFor.assign(s.stillFor.size(), 0.0);
+  s.resting.clear();
   s.sleeping = 0;
 }
 

@@ -35,6 +35,9 @@ WorldData initialData(const WorldModel& model) {
   d.aux.resize(n);
   d.contacts.assign(n, 0);
   d.sleep = awakeState(n);
+  d.contactLoads.impulse.assign(n, Vec3::Zero());
+  d.contactLoads.angularImpulse.assign(n, Vec3::Zero());
+  d.contactLoads.surfaceImpulse.assign(model.surfaces.size(), Vec3::Zero());
   if constexpr (modules::kCollisions) {
     std::vector<bool> collides, meetsSurfaces;
     for (const BodyConstants& body : model.bodies) {
@@ -47,7 +50,10 @@ WorldData initialData(const WorldModel& model) {
     const long onSurfaces = model.surfaces.empty() ? 0 : std::count(meetsSurfaces.begin(), meetsSurfaces.end(), true);
     if (colliding >= 2 || onSurfaces >= 1) {
       d.collision = std::make_shared<CollisionCache>(
-          CollisionCache{CollisionDetector(model, collides, meetsSurfaces), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}});
+          CollisionCache{CollisionDetector(model, collides, meetsSurfaces), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {},
+                         {}, {}, {}, {}});
+      d.collision->stepImpulse.assign(n, Vec3::Zero());
+      d.collision->stepAngularImpulse.assign(n, Vec3::Zero());
       for (size_t i = 0; i < model.bodies.size(); ++i) {
         const Shape& shape = model.bodies[i].shape;
         d.collision->halfThickness.push_back(meetsSurfaces[i] ? halfThickness(shape) : 0.0);
@@ -69,6 +75,12 @@ WorldData initialData(const WorldModel& model) {
   for (size_t i = 0; i < n; ++i) d.audit.energy[i] = d.aux[i].omega.dot(d.Y[i].L);
   d.audit.reference = d.audit.energy;
   return d;
+}
+
+void clearContactLoads(WorldData& data) {
+  WorldData::ContactLoads& loads = data.contactLoads;
+  for (auto* v : {&loads.impulse, &loads.angularImpulse, &loads.surfaceImpulse}) v->assign(v->size(), Vec3::Zero());
+  loads.duration = 0.0;
 }
 
 // computeVelocities() of every body, four bodies at a time (body_packs.h).
@@ -235,9 +247,22 @@ void respondToContacts(StepContext& s, std::vector<BodyState>& after) {
     Stopwatch response(slotOf(s.data, &StepProfile::response));
     const ContactStep step{s.h, restingNormalSpeed(s.model.gravity, s.h), constantForceDisplacement(s.model.method)};
     setAsideSleeping(sleep, s.data.contactMemory, *c);
-    const ContactSolveReport report =
-        solveContacts(s.model, c->contacts, step, s.data.contactMemory, after, s.data.contacts, c->solver);
+    c->Pbefore.resize(after.size());
+    c->Lbefore.resize(after.size());
+    for (size_t i = 0; i < after.size(); ++i) c->Pbefore[i] = after[i].P, c->Lbefore[i] = after[i].L;
+    const ContactSolveReport report = solveContacts(s.model, c->contacts, step, s.data.contactMemory, after,
+                                                    s.data.contacts, c->solver, c->pushes);
     mergeBackSleeping(s.data.contactMemory, *c);
+    // the loads: the solve changed P and L by impulses only (its position correction
+    // moves X and q)
+    WorldData::ContactLoads& loads = s.data.contactLoads;
+    for (size_t i = 0; i < after.size(); ++i) {
+      c->stepImpulse[i] = after[i].P - c->Pbefore[i];
+      c->stepAngularImpulse[i] = after[i].L - c->Lbefore[i];
+      loads.impulse[i] += c->stepImpulse[i];
+      loads.angularImpulse[i] += c->stepAngularImpulse[i];
+    }
+    for (const SurfacePush& p : c->pushes) loads.surfaceImpulse[p.surface] += p.impulse;
     if (s.data.profiling) {
       ++s.data.profile.solves;
       s.data.profile.iterations += report.iterations;
@@ -386,8 +411,11 @@ StepResult stepOnce(StepContext& s) {
     }
     respondToContacts(s, next);
     if (const StepResult r = commit(s.model, s.data, next, s.h); !r.ok) return r;
-    if constexpr (modules::kCollisions)
+    if constexpr (modules::kCollisions) {
+      s.data.contactLoads.duration += taken;
+      addRestingLoads(s.data, taken);
       if (CollisionCache* c = s.data.collision.get()) updateSleep(s.model, s.data, taken, *c);
+    }
     s.data.steps += steps;
     done += taken;
     if (taken == rest || impacts >= kMaxImpactsPerStep) return {};

@@ -83,6 +83,14 @@ struct WorldData {
   std::vector<ContactMemory> contactMemory;
   // Which bodies sleep (sleep.h). Part of the FMU state.
   SleepState sleep;
+  // The contact impulses summed since the last clearContactLoads (the FMU clears them
+  // at each communication step and reports them over its length as mean forces):
+  // per body the linear one and its moment about the centre of mass (N s, N m s, world
+  // frame), per surface the impulse the bodies gave it, and the time they cover.
+  struct ContactLoads {
+    std::vector<Vec3> impulse, angularImpulse, surfaceImpulse;
+    double duration = 0.0;  // s
+  } contactLoads;
   Scratch scratch;
   bool profiling = false;
   StepProfile profile;
@@ -90,6 +98,9 @@ struct WorldData {
 
 // Data for the start of a run: every body at its start values, inputs zero.
 WorldData initialData(const WorldModel& model);
+
+// Zeroes WorldData::contactLoads.
+void clearContactLoads(WorldData& data);
 
 // Refreshes V, R and omega of the current Y (outputs, the energy audit, the stability
 // limits). I(t)^-1 is left out: only contacts use it, and they form their own.

@@ -104,7 +104,9 @@ OneSolve solveOnce(const TwoBodies& t, double restingSpeed) {
   OneSolve o;
   o.Y = t.Y;
   rigid::ContactScratchPtr scratch;
-  o.report = rigid::solveContacts(t.model, {t.contact}, {1e-3, restingSpeed}, o.memory, o.Y, o.count, scratch);
+  std::vector<rigid::SurfacePush> pushes;
+  o.report =
+      rigid::solveContacts(t.model, {t.contact}, {1e-3, restingSpeed}, o.memory, o.Y, o.count, scratch, pushes);
   return o;
 }
 

@@ -47,6 +47,8 @@ std::set<std::string> expectedBodyNames(const std::string& b) {
   names.insert(b + ".contacts");  // extension: contact points in the last step (issue 4)
   names.insert(b + ".staticFriction");  // issue 18: friction as tunable parameters
   names.insert(b + ".kineticFriction");
+  for (const char* f : {"contactForce", "contactTorque"})  // issue 18: the contact loads
+    for (int i = 1; i <= 3; ++i) names.insert(b + "." + f + "[" + std::to_string(i) + "]");
   return names;
 }
 
@@ -91,7 +93,7 @@ TEST_F(Description, VariableNamesAreThoseOfTheInterface) {
                                        "solver.energyGainLimit"};
   EXPECT_EQ(byOwner["world"], world);
   EXPECT_EQ(byOwner.size(), 3u);
-  EXPECT_EQ(vars.size(), 2u * 30u + 10u);  // 30 per body, 10 for the world
+  EXPECT_EQ(vars.size(), 2u * 36u + 10u);  // 36 per body, 10 for the world
 }
 
 TEST_F(Description, CausalityAndUnitsFollowTheInterfaceTable) {
@@ -342,7 +344,8 @@ TEST(Parameters, MaterialAndFluidConstantsAreTunableParameters) {
   EXPECT_EQ(rigidfmu::writeValue(find(vars, "floor.restitution"), 1.5, model, data, Phase::Running),
             "floor.restitution: must be in [0, 1], got 1.5");
   // the earlier variables keep their value references: the new ones come last
-  EXPECT_EQ(vars.back().name, "pool.viscosity");
+  EXPECT_LT(find(vars, "pool.viscosity").vr, find(vars, "floor.force[1]").vr);  // the loads come last
+  EXPECT_EQ(vars.back().name, "floor.force[3]");
   EXPECT_LT(find(vars, "b.contacts").vr, find(vars, "b.staticFriction").vr);
   // mu_k above mu_s: refused when the pair takes effect, naming both
   EXPECT_EQ(rigidfmu::frictionConflict(model), "");

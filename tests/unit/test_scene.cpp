@@ -409,7 +409,7 @@ TEST(Scene, ExposedVariablesAreRead) {
 TEST(Scene, ExposedOutputUnknown) {
   EXPECT_SCENE_ERROR(sceneWith(R"(, "outputs": ["position", "speed"])"),
                      "bodies[0].outputs[1]: must be one of position, orientation, velocity, "
-                     "angularVelocity, linearMomentum, angularMomentum, contacts, got \"speed\"");
+                     "angularVelocity, linearMomentum, angularMomentum, contacts, contactForce, contactTorque, got \"speed\"");
 }
 
 TEST(Scene, ExposedInputTwice) {

@@ -118,3 +118,34 @@ def test_an_fmu_state_holds_the_parameters_set_mid_run(box_fmu):
         s.slave.freeFMUstate(state)
     finally:
         s.close()
+
+
+def test_the_other_parameters_change_the_motion_as_the_closed_forms_say(fmu_of, box_fmu):
+    """box.kineticFriction = box.staticFriction = 0.36 on the scene's floor of 0.6:
+    mu = sqrt(0.36 * 0.6), stopping distance v0^2 / (2 mu g). floor.restitution = 0.64
+    under a ball of xi = 1: xi = sqrt(0.64) = 0.8, first apex 0.64 H. pool.viscosity
+    (density 0): Stokes' b = 6 pi mu r, terminal velocity m g / b."""
+    mu = math.sqrt(0.36 * 0.6)
+    r = simulate_fmu(str(box_fmu), stop_time=1.0, output_interval=0.01,
+                     start_values={"box.staticFriction": 0.36, "box.kineticFriction": 0.36})
+    assert r["box.position[1]"][-1] == pytest.approx(V0 ** 2 / (2 * mu * G), abs=1e-3)
+
+    h0, radius = 1.0, 0.1
+    ball = scenes.body("ball", shape={"type": "sphere", "radius": radius}, mass=1.0,
+                       position=[0, 0, radius + h0], restitution=1.0)
+    drop = scenes.scene("ParameterDrop", [ball])
+    drop["surfaces"] = [scenes.floor(0.5, 0.3, 1.0)]
+    r = simulate_fmu(str(fmu_of(drop)), stop_time=1.2, output_interval=1e-3,
+                     start_values={"floor.restitution": 0.64})
+    t1 = math.sqrt(2 * h0 / G)
+    after = r["time"] > t1 + 0.01
+    assert r["ball.position[3]"][after].max() - radius == pytest.approx(0.64 * h0, rel=1e-3)
+
+    b, m = 2.0, 1.0
+    sink = scenes.scene("ParameterStokes", [scenes.body("ball", shape={"type": "sphere", "radius": radius}, mass=m)])
+    sink["media"] = [{"name": "pool", "type": "custom", "density": 0.0, "viscosity": 1.0,
+                      "min": [-100, -100, -100], "max": [100, 100, 100]}]
+    r = simulate_fmu(str(fmu_of(sink)), stop_time=5.0, output_interval=0.1,
+                     start_values={"pool.viscosity": b / (6 * math.pi * radius)})
+    tau = m / b
+    assert r["ball.velocity[3]"][-1] == pytest.approx(-m * G / b * (1 - math.exp(-5.0 / tau)), rel=1e-6)

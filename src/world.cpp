@@ -253,16 +253,11 @@ void respondToContacts(StepContext& s, std::vector<BodyState>& after) {
     const ContactSolveReport report = solveContacts(s.model, c->contacts, step, s.data.contactMemory, after,
                                                     s.data.contacts, c->solver, c->pushes);
     mergeBackSleeping(s.data.contactMemory, *c);
-    // the loads: the solve changed P and L by impulses only (its position correction
-    // moves X and q)
-    WorldData::ContactLoads& loads = s.data.contactLoads;
+    // the solve changed P and L by impulses only (its position correction moves X and q)
     for (size_t i = 0; i < after.size(); ++i) {
       c->stepImpulse[i] = after[i].P - c->Pbefore[i];
       c->stepAngularImpulse[i] = after[i].L - c->Lbefore[i];
-      loads.impulse[i] += c->stepImpulse[i];
-      loads.angularImpulse[i] += c->stepAngularImpulse[i];
     }
-    for (const SurfacePush& p : c->pushes) loads.surfaceImpulse[p.surface] += p.impulse;
     if (s.data.profiling) {
       ++s.data.profile.solves;
       s.data.profile.iterations += report.iterations;
@@ -270,6 +265,23 @@ void respondToContacts(StepContext& s, std::vector<BodyState>& after) {
   } else {
     (void)after;
   }
+}
+
+// After a step of `taken` is committed (a refused one adds nothing): its contact
+// impulses and the sleeping bodies' loads into WorldData::contactLoads, then the
+// islands that have come to rest fall asleep.
+void addLoadsAndSleep(StepContext& s, double taken) {
+  CollisionCache* c = s.data.collision.get();
+  if (!c) return;
+  WorldData::ContactLoads& loads = s.data.contactLoads;
+  for (size_t i = 0; i < loads.impulse.size(); ++i) {
+    loads.impulse[i] += c->stepImpulse[i];
+    loads.angularImpulse[i] += c->stepAngularImpulse[i];
+  }
+  for (const SurfacePush& p : c->pushes) loads.surfaceImpulse[p.surface] += p.impulse;
+  loads.duration += taken;
+  addRestingLoads(s.data, taken);
+  updateSleep(s.model, s.data, taken, *c);
 }
 
 // The energy audit: a body whose angular momentum the step left bitwise unchanged had
@@ -411,11 +423,7 @@ StepResult stepOnce(StepContext& s) {
     }
     respondToContacts(s, next);
     if (const StepResult r = commit(s.model, s.data, next, s.h); !r.ok) return r;
-    if constexpr (modules::kCollisions) {
-      s.data.contactLoads.duration += taken;
-      addRestingLoads(s.data, taken);
-      if (CollisionCache* c = s.data.collision.get()) updateSleep(s.model, s.data, taken, *c);
-    }
+    if constexpr (modules::kCollisions) addLoadsAndSleep(s, taken);
     s.data.steps += steps;
     done += taken;
     if (taken == rest || impacts >= kMaxImpactsPerStep) return {};

@@ -2,6 +2,7 @@
 // contacts it found, and the buffers of the step's sub-stepping and contact solve.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "collision_detection.h"
@@ -11,6 +12,7 @@
 namespace rigid {
 
 struct CollisionCache {
+  explicit CollisionCache(CollisionDetector d) : detector(std::move(d)) {}
   CollisionDetector detector;
   std::vector<Contact> contacts;
   std::vector<double> halfThickness;    // m, per body (0 for bodies that meet nothing)

@@ -4,6 +4,8 @@
 // state saved and restored carries it, and a restored run continues bitwise.
 #pragma once
 
+#include <tuple>
+
 #include "math_types.h"
 
 namespace rigid {
@@ -19,5 +21,11 @@ struct ContactMemory {
   // the next solve limits its friction by mu_k, a sticking point's by mu_s.
   bool sliding = false;
 };
+
+// The order of the detector's pairs (a, bodies before surfaces, b or surface), which
+// the contacts and the contact memory keep.
+inline std::tuple<int, int, int> pairKey(int a, int b, int surface) {
+  return std::make_tuple(a, b < 0 ? 1 : 0, b >= 0 ? b : surface);
+}
 
 }  // namespace rigid

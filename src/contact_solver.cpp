@@ -290,7 +290,6 @@ int answerImpacts(Solver& s, const ContactStep& step, std::vector<BodyState>& Y,
 
 // ---- warm start ------------------------------------------------------------------
 
-auto pairKey(int a, int b, int surface) { return std::make_tuple(a, b < 0 ? 1 : 0, b >= 0 ? b : surface); }
 
 // The velocities that the impacts and the solve's impulses start from (correctPositions
 // moves each body by what they change, within limitMoves).

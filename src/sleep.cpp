@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <numeric>
-#include <tuple>
 
 #include "islands.h"
 
@@ -25,10 +24,6 @@ void wakeIsland(SleepState& s, int island) {
                   s.resting.end());
 }
 
-// The order of the detector's pairs, which the contact memory keeps.
-auto pairKey(const ContactMemory& m) {
-  return std::make_tuple(m.a, m.b < 0 ? 1 : 0, m.b >= 0 ? m.b : m.surface);
-}
 
 }  // namespace
 
@@ -133,7 +128,9 @@ void mergeBackSleeping(std::vector<ContactMemory>& memory, CollisionCache& cache
   if (kept.empty()) return;
   merged.clear();
   std::merge(memory.begin(), memory.end(), kept.begin(), kept.end(), std::back_inserter(merged),
-             [](const ContactMemory& x, const ContactMemory& y) { return pairKey(x) < pairKey(y); });
+             [](const ContactMemory& x, const ContactMemory& y) {
+               return pairKey(x.a, x.b, x.surface) < pairKey(y.a, y.b, y.surface);
+             });
   memory.swap(merged);
 }
 

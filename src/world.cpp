@@ -49,9 +49,7 @@ WorldData initialData(const WorldModel& model) {
     const long colliding = std::count(collides.begin(), collides.end(), true);
     const long onSurfaces = model.surfaces.empty() ? 0 : std::count(meetsSurfaces.begin(), meetsSurfaces.end(), true);
     if (colliding >= 2 || onSurfaces >= 1) {
-      d.collision = std::make_shared<CollisionCache>(
-          CollisionCache{CollisionDetector(model, collides, meetsSurfaces), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {},
-                         {}, {}, {}, {}});
+      d.collision = std::make_shared<CollisionCache>(CollisionDetector(model, collides, meetsSurfaces));
       d.collision->stepImpulse.assign(n, Vec3::Zero());
       d.collision->stepAngularImpulse.assign(n, Vec3::Zero());
       for (size_t i = 0; i < model.bodies.size(); ++i) {

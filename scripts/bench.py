@@ -781,7 +781,7 @@ def write_manifold_section(w, r):
     if awake:
         w("**Sleep off** (`BM_PileAwake/<N>`: the same runs with `\"solver\": {\"sleep\": false}`, once "
           "each): the solver alone, every body awake to the end. Islands sleep by default "
-          "(README, *Sleeping islands*): a body none of whose points moves faster than 1 cm/s for "
+          "(docs/guide/surfaces-and-contacts.md, *Sleeping islands*): a body none of whose points moves faster than 1 cm/s for "
           "0.5 s, in an island resting on a surface, sleeps until something touches or drives "
           "it; the table above is the default.\n")
         w("| N | falling: per simulated second | at rest: per step | at rest: per simulated second | "
@@ -843,7 +843,7 @@ def write_manifold_section(w, r):
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--quick", action="store_true", help="short runs (for the test suite)")
-    p.add_argument("--out", default=str(ROOT / "docs"), help="writes OUT/performance.md and OUT/performance/")
+    p.add_argument("--out", default=str(ROOT / "docs" / "reports"), help="writes OUT/performance.md and OUT/performance/")
     p.add_argument("--build", default=os.environ.get("RIGIDFMU_BUILD", str(ROOT / "build")))
     args = p.parse_args()
     t_start = time.perf_counter()

@@ -3,7 +3,7 @@
 # The performance report (scripts/bench.py): builds the core and its Google Benchmark
 # (rigid-bench-core) like build_fmu.sh (in build/, or $RIGIDFMU_BUILD), makes sure the
 # peers' venv (.venv-peers, MuJoCo) is there, then runs the core, FMU and MuJoCo
-# benchmarks in one run. Default: writes docs/performance.md and docs/performance/.
+# benchmarks in one run. Default: writes docs/reports/performance.md and docs/reports/performance/.
 # --quick: short runs for the test suite (no 10000 free bodies, no pile of 1000, and
 # MuJoCo only if .venv-peers already exists, since installing it is slow).
 set -euo pipefail

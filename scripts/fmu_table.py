@@ -1,7 +1,7 @@
-"""The README's table of example FMUs: for each scene in scripts/scenes/, the FMU's
+"""The table of example FMUs (docs/reports/fmus.md): for each scene in scripts/scenes/, the FMU's
 size, its bundled libraries, its number of variables and its cost per internal step
 (median of repeated runs through fmpy, 1 s communication steps). Rewrites the part of
-README.md between the fmu-table markers, or prints the table with --print.
+docs/reports/fmus.md between the fmu-table markers, or prints the table with --print.
 
 usage: fmu_table.py [--print] [--quick] [--build BUILD_DIR]"""
 import argparse
@@ -43,7 +43,7 @@ def table(build_dir, quick):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--print", action="store_true", help="print the table instead of updating README.md")
+    p.add_argument("--print", action="store_true", help="print the table instead of updating docs/reports/fmus.md")
     p.add_argument("--quick", action="store_true", help="one short run per scene")
     p.add_argument("--build", default=os.environ.get("RIGIDFMU_BUILD", ROOT / "build"))
     args = p.parse_args()
@@ -51,10 +51,10 @@ def main():
     if args.print:
         print(text)
         return 0
-    readme = ROOT / "README.md"
+    readme = ROOT / "docs" / "reports" / "fmus.md"
     old = readme.read_text()
     if BEGIN not in old or END not in old:
-        print(f"README.md has no {BEGIN} ... {END} markers", file=sys.stderr)
+        print(f"{readme.relative_to(ROOT)} has no {BEGIN} ... {END} markers", file=sys.stderr)
         return 1
     new = re.sub(re.escape(BEGIN) + ".*?" + re.escape(END), lambda _: f"{BEGIN}\n{text}\n{END}", old,
                  flags=re.S)

@@ -1,4 +1,4 @@
-"""The floating box's heave as an independent reference (docs/media.md's model written
+"""The floating box's heave as an independent reference (docs/reports/media.md's model written
 again here, solved by scipy), shared by the accuracy report and the stress suite."""
 import math
 

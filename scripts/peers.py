@@ -37,7 +37,7 @@ def run(integrator, dt):
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--quick", action="store_true")
-    p.add_argument("--out", default=str(pathlib.Path(__file__).resolve().parents[1] / "docs" / "peers.json"))
+    p.add_argument("--out", default=str(pathlib.Path(__file__).resolve().parents[1] / "docs" / "reports" / "peers.json"))
     args = p.parse_args()
     q_ref = torque_free_reference(I, W0, T)
     rows = []

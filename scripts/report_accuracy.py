@@ -13,7 +13,7 @@ communication steps of 0.5 s).
 
 usage:
   report_accuracy.py [--out DIR] [--runs N]          the full report: DIR/accuracy.md and
-                                                     DIR/accuracy/*.png (default DIR docs/)
+                                                     DIR/accuracy/*.png (default DIR docs/reports/)
   report_accuracy.py --quick [--out DIR]             a few steps per method, 1 run each,
                                                      the smooth problems only; exit status 1
                                                      when a measured order is off
@@ -92,7 +92,7 @@ def bounce_height(t, h0, e):
         v *= e
 
 
-# Fluids (README / docs/media.md): water 998.2 kg/m3, 1.002e-3 Pa s; box C_d 1.05,
+# Fluids (docs/scene-format.md / docs/reports/media.md): water 998.2 kg/m3, 1.002e-3 Pa s; box C_d 1.05,
 # sphere C_d 0.47; Stokes b = 6 pi mu r for a sphere, Leith's 6 pi (r_n/3 + 2 r_s/3) mu
 # for other shapes.
 
@@ -302,7 +302,7 @@ def problems():
         "buoyancy of the clipped volume and drag scaled by the submerged fraction. "
         "The quadratic drag |v| v is only C1 where the heave turns (v = 0).",
         "scipy DOP853 (rtol 1e-12) on the 1-DOF heave equation with the buoyancy and "
-        "drag of docs/media.md (Leith's linear and C_d 1.05 quadratic drag, scaled by the "
+        "drag of docs/reports/media.md (Leith's linear and C_d 1.05 quadratic drag, scaled by the "
         "submerged fraction); error = |x(T) - x_ref(T)|.", 0.1, smooth=False,
         not_asymptotic={"*"},
         note="The drag |v| v has a discontinuous second derivative at the turning points, "
@@ -920,7 +920,7 @@ def main():
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--quick", action="store_true",
                    help="a few steps per method, 1 run each, smooth problems; exit 1 on a wrong order")
-    p.add_argument("--out", default=str(ROOT / "docs"), help="output directory (default docs/)")
+    p.add_argument("--out", default=str(ROOT / "docs" / "reports"), help="output directory (default docs/reports/)")
     p.add_argument("--runs", type=int, default=5, help="timed runs per configuration (median)")
     p.add_argument("--problems", help="comma-separated problem keys (default: all)")
     p.add_argument("--scene", help="a scene file: recommend a method and step for it")
@@ -929,7 +929,7 @@ def main():
     p.add_argument("--build", default=os.environ.get("RIGIDFMU_BUILD", str(ROOT / "build")))
     p.add_argument("--no-build", action="store_true", help="do not (re)build the core")
     p.add_argument("--verbose", "-v", action="store_true", help="print every run")
-    p.add_argument("--peers", default=str(ROOT / "docs" / "peers.json"),
+    p.add_argument("--peers", default=str(ROOT / "docs" / "reports" / "peers.json"),
                    help="the peers' measurements (scripts/peers.sh) to draw beside ours, if the file exists")
     args = p.parse_args()
     if args.scene and args.tolerance is None:

@@ -2,8 +2,8 @@
 # scripts/report_accuracy.sh [--quick] [--out DIR] [--scene SCENE.json --tolerance TOL ...]
 # The accuracy report of the integration methods (scripts/report_accuracy.py): builds the
 # core like build_fmu.sh (in build/, or $RIGIDFMU_BUILD), then runs the report with the
-# venv's python; every argument is passed through. Default: writes docs/accuracy.md and
-# docs/accuracy/*.png.
+# venv's python; every argument is passed through. Default: writes docs/reports/accuracy.md
+# and docs/reports/accuracy/*.png.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 [ -n "${RIGIDFMU_SKIP_SETUP:-}" ] || "$root/scripts/setup.sh"
@@ -13,6 +13,6 @@ build="${RIGIDFMU_BUILD:-$root/build}"
 # that their points sit on our diagrams; quick and --scene modes leave them out.
 case " $* " in
   *" --quick "*|*" --scene "*) ;;
-  *) RIGIDFMU_SKIP_SETUP=1 "$root/scripts/peers.sh" --out "$root/docs/peers.json" || echo "peers: not measured" >&2 ;;
+  *) RIGIDFMU_SKIP_SETUP=1 "$root/scripts/peers.sh" --out "$root/docs/reports/peers.json" || echo "peers: not measured" >&2 ;;
 esac
 exec "$root/.venv/bin/python" "$root/scripts/report_accuracy.py" --build "$build" --no-build "$@"

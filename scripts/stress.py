@@ -26,7 +26,7 @@ own equations), the energy drift, |q| - 1 and the run time of the stepping.
 usage:
   stress.py [--out DIR]            the full suite (1e7 steps, long runs, MuJoCo beside
                                    the fast-spin case when .venv-peers is there);
-                                   writes DIR/stability.md (default docs/)
+                                   writes DIR/stability.md (default docs/reports/)
   stress.py --quick [--out DIR]    every case with every method, short runs
   options: --build DIR (default $RIGIDFMU_BUILD or build/), --no-build, --only SUBSTRING
            (cases whose key contains it), --no-peers, --jobs N
@@ -607,7 +607,7 @@ def float_case(quick, h):
                 s, T, H,
                 "no NaN/Inf; |q|−1 ≤ 1e-12; heave energy (kinetic + gravity + buoyancy potential ½ρgA s², from equilibrium) "
                 "never above its start by more than 1e-3 of it; x, y, ω stay 0 (1e-9); mean draft over the last 20 % within 5 % of 1 mm; "
-                "error: max |z − z_ref| against DOP853 on the heave equation (docs/media.md), relative to the 0.5 mm offset",
+                "error: max |z − z_ref| against DOP853 on the heave equation (docs/reports/media.md), relative to the 0.5 mm offset",
                 judge, step=h)
 
 
@@ -1164,7 +1164,7 @@ def run_peers(quick, out_json):
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--quick", action="store_true")
-    p.add_argument("--out", default=str(ROOT / "docs"))
+    p.add_argument("--out", default=str(ROOT / "docs" / "reports"))
     p.add_argument("--build", default=os.environ.get("RIGIDFMU_BUILD", str(ROOT / "build")))
     p.add_argument("--no-build", action="store_true")
     p.add_argument("--only", default=None)

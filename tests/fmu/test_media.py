@@ -1,4 +1,4 @@
-"""Media through the FMU: drag and buoyancy against closed forms (docs/media.md)."""
+"""Media through the FMU: drag and buoyancy against closed forms (docs/reports/media.md)."""
 import math
 
 import numpy as np
@@ -11,7 +11,7 @@ from harness import Slave
 G = 9.81
 RHO_WATER = 998.2      # kg/m3, the "water" type's density
 MU_WATER = 1.002e-3    # Pa s
-SPHERE_CD = 0.47       # docs/media.md
+SPHERE_CD = 0.47       # docs/reports/media.md
 
 
 def medium(name="pool", kind="custom", lo=(-100, -100, -100), hi=(100, 100, 100), **fields):

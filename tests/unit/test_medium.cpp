@@ -24,7 +24,7 @@ using rigid::Vec3;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kBig = 1e3;  // m, half-size of "unbounded" medium boxes
 
-// Errors of the approximations, as stated in docs/media.md.
+// Errors of the approximations, as stated in docs/reports/media.md.
 constexpr double kLatheVolumeError = 2.5e-3;    // of the body's volume
 constexpr double kLatheCentroidError = 3e-3;    // of the body's largest dimension
 constexpr double kSphereMultiAxisError = 1e-3;    // of the ball's volume, cut along 2-3 axes

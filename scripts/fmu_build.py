@@ -3,13 +3,11 @@ build_fmu.sh does: the core once, then one packaging per scene content (cached b
 hash of the scene in `folder`)."""
 import hashlib
 import json
-import os
 import pathlib
-import subprocess
 import sys
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
-CMAKE = "/usr/bin/cmake"
+from rigidfmu import fmu_package
+from rigidfmu.native import Native, build_core
 
 
 def ensure_core(build, no_build, who):
@@ -21,11 +19,7 @@ def ensure_core(build, no_build, who):
         if not (build / "rigidfmu-describe").exists():
             sys.exit(f"{who}: no rigidfmu-describe in {build} (build it, or drop --no-build)")
         return
-    if not (build / "CMakeCache.txt").exists():
-        subprocess.run([CMAKE, "-S", str(ROOT), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release"],
-                       check=True, stdout=subprocess.DEVNULL)
-    subprocess.run([CMAKE, "--build", str(build), f"-j{os.cpu_count() or 1}", "--target",
-                    "rigidfmu-describe", "rigidfmu_fmus"], check=True, stdout=subprocess.DEVNULL)
+    build_core(build.resolve())
 
 
 def package(build, folder, scene_dict):
@@ -37,8 +31,5 @@ def package(build, folder, scene_dict):
     if not out.exists():
         path = pathlib.Path(folder) / f"{name}-{key}.json"
         path.write_text(text)
-        subprocess.run([CMAKE, f"-DSCENE={path}", f"-DOUT={out}",
-                        f"-DDESCRIBE={pathlib.Path(build) / 'rigidfmu-describe'}",
-                        f"-DLIBRARY_DIR={build}", "-P", str(ROOT / "cmake" / "package_fmu.cmake")],
-                       check=True, stdout=subprocess.DEVNULL)
+        fmu_package.package(path, out, Native(pathlib.Path(build).resolve()))
     return out

@@ -2,7 +2,7 @@
 # Installs everything rigidfmu needs on a fresh Debian machine: the Debian packages
 # (compiler, CMake, Eigen, FCL, nlohmann-json, GoogleTest, chromium for the replay's
 # browser test), a Python venv (.venv) with the pinned packages of requirements.txt and
-# the replay page's npm packages (scripts/replay/package-lock.json; Node.js and npm come
+# the replay page's npm packages (python/rigidfmu/replay/page/package-lock.json; Node.js and npm come
 # with the machine). Idempotent and quick when done.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -32,10 +32,14 @@ if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
   "$venv/bin/pip" install -q --disable-pip-version-check -r "$root/requirements.txt"
   echo "$want" > "$stamp"
 fi
+# The source tree's package (python/rigidfmu) on the venv's path, as an editable install
+# would put it, so that `.venv/bin/python -m rigidfmu` and the tests run this tree.
+site="$("$venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
+[ -f "$site/rigidfmu-source.pth" ] || echo "$root/python" > "$site/rigidfmu-source.pth"
 
 # three.js, esbuild and playwright-core exactly as locked; npm ci empties node_modules
 # first, so a changed lock never leaves a stale package behind.
-replay="$root/scripts/replay"
+replay="$root/python/rigidfmu/replay/page"
 stamp="$replay/node_modules/.package-lock.sha256"
 want="$(sha256sum "$replay/package-lock.json" | cut -d' ' -f1)"
 if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
@@ -43,3 +47,6 @@ if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
   (cd "$replay" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
   echo "$want" > "$stamp"
 fi
+# The page's template (dist/replay.html, rebuilt when a source is newer): a package
+# installed from this tree (pip install .) carries it.
+"$venv/bin/python" -c 'from rigidfmu.replay import ensure_template; ensure_template()'

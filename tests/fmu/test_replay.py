@@ -1,5 +1,5 @@
-"""The run's outputs for people: simulate.py's plots, and the 3D replay page that
-replay.sh writes, self-contained, and that headless chromium opens with no error,
+"""The run's outputs for people: `rigidfmu simulate --plot`'s figures, and the 3D
+replay page that replay.sh writes, self-contained, and that headless chromium opens with no error,
 shows every body in its palette colour and moves the bodies with the time slider."""
 import colorsys
 import json
@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from replay import colour_of
+from rigidfmu.replay import colour_of
 from scenes import body, scene
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -41,13 +41,13 @@ def colours_scene():
 
 @pytest.fixture(scope="module")
 def run(fmu_of, tmp_path_factory):
-    """A simulated run (CSV and plots by simulate.py) and its replay by replay.sh."""
+    """A simulated run (CSV and plots by `rigidfmu simulate`) and its replay by replay.sh."""
     out = tmp_path_factory.mktemp("replay")
     s = colours_scene()
     scene_file = out / "scene.json"
     scene_file.write_text(json.dumps(s))
     fmu = fmu_of(s)
-    printed = subprocess.run([sys.executable, str(ROOT / "scripts" / "simulate.py"), str(fmu),
+    printed = subprocess.run([sys.executable, "-m", "rigidfmu", "simulate", str(fmu), "--plot",
                               "--stop-time", str(STOP_TIME), "--output-interval", "0.02",
                               "--out", str(out)],
                              check=True, capture_output=True, text=True, env=ENV).stdout
@@ -61,7 +61,7 @@ def run(fmu_of, tmp_path_factory):
 def test_simulate_writes_the_four_plots(run):
     for kind in ("position", "velocity", "energy", "contacts"):
         png = run["csv"].with_name(f"{run['csv'].stem}_{kind}.png")
-        assert f"wrote {png}" in run["printed"]
+        assert str(png) in run["printed"].splitlines()
         with Image.open(png) as image:
             assert image.width >= 600 and image.height >= 150
 
@@ -104,7 +104,7 @@ def body_pixels(png, colour):
                     reason=f"no {CHROMIUM} or node (scripts/setup.sh installs Debian's chromium)")
 def test_page_shows_the_bodies_and_the_slider_moves_them(run):
     shots = run["dir"] / "shots"
-    printed = subprocess.run(["node", str(ROOT / "scripts" / "replay" / "snapshot.mjs"), str(run["html"]),
+    printed = subprocess.run(["node", str(ROOT / "python" / "rigidfmu" / "replay" / "page" / "snapshot.mjs"), str(run["html"]),
                               str(shots), "0", "last"],
                              check=True, capture_output=True, text=True, timeout=120).stdout
     report = json.loads(printed.strip().splitlines()[-1])

@@ -1,4 +1,4 @@
-// The replay page: reads the run embedded by scripts/replay.py (a JSON block, format in
+// The replay page: reads the run embedded by rigidfmu.replay (a JSON block, format in
 // that file's docstring), builds the scene once and poses the bodies frame by frame.
 import * as THREE from 'three';
 import { bodyObject, boundingRadius, setPose } from './bodies.js';

@@ -1,7 +1,7 @@
 """Writes the 3D replay of a run: one self-contained HTML file (three.js inlined, no
-network) from a result CSV (as scripts/simulate.py writes it) and the scene JSON.
+network) from a result CSV (as rigidfmu.simulate writes it) and the scene JSON.
 
-    replay.py RESULT.csv SCENE.json OUT.html
+    rigidfmu replay RESULT.csv SCENE.json [-o OUT.html]
 
 The run is embedded in the page as JSON:
     {"title": str, "up": [x, y, z] (unit, against gravity; z without gravity),
@@ -17,17 +17,16 @@ the scene (one frame); its contacts are then null.
 Body k is drawn in PALETTE[k % len(PALETTE)] (scene order): colours are the replay's
 choice, not part of the scene format, and the browser test finds the bodies by them.
 """
-import argparse
 import csv
 import json
 import pathlib
 import subprocess
-import sys
 
 import numpy as np
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
-PAGE = ROOT / "scripts" / "replay"
+from rigidfmu.errors import ReplayError
+
+PAGE = pathlib.Path(__file__).resolve().parent / "page"  # its sources, npm packages and build
 TEMPLATE = PAGE / "dist" / "replay.html"
 DATA_MARKER = "<!-- replay-data -->"
 
@@ -41,12 +40,17 @@ def colour_of(index: int) -> str:
 
 
 def ensure_template() -> pathlib.Path:
-    """dist/replay.html, rebuilt by esbuild when a source of the page is newer."""
+    """dist/replay.html, rebuilt by esbuild when a source of the page is newer. An
+    installed package carries the template built, without the sources."""
+    if not (PAGE / "src").is_dir():
+        if not TEMPLATE.exists():
+            raise ReplayError(f"{TEMPLATE} is missing from the installed package")
+        return TEMPLATE
     sources = [*(PAGE / "src").iterdir(), PAGE / "build.mjs", PAGE / "package-lock.json"]
     if TEMPLATE.exists() and TEMPLATE.stat().st_mtime >= max(s.stat().st_mtime for s in sources):
         return TEMPLATE
     if not (PAGE / "node_modules" / "three").is_dir():
-        sys.exit(f"replay: {PAGE}/node_modules is missing; scripts/setup.sh installs it (npm ci)")
+        raise ReplayError(f"{PAGE}/node_modules is missing; scripts/setup.sh installs it (npm ci)")
     subprocess.run(["node", str(PAGE / "build.mjs")], check=True, stdout=subprocess.DEVNULL)
     return TEMPLATE
 
@@ -99,9 +103,11 @@ def run_data(result: dict, scene: dict, title: str) -> dict:
     }
 
 
-def write_replay(csv_path, scene_path, out_path) -> pathlib.Path:
-    csv_path, scene_path, out_path = map(pathlib.Path, (csv_path, scene_path, out_path))
-    scene = json.loads(scene_path.read_text())
+def write_replay(csv_path, scene, out_path) -> pathlib.Path:
+    """The replay page of a result CSV; `scene` is the scene file or its dict."""
+    csv_path, out_path = pathlib.Path(csv_path), pathlib.Path(out_path)
+    if not isinstance(scene, dict):
+        scene = json.loads(pathlib.Path(scene).read_text())
     title = f"{scene.get('name', 'scene')} ({csv_path.name})"
     data = json.dumps(run_data(read_result(csv_path), scene, title), separators=(",", ":"))
     # "</" inside the JSON would end its script element early; "<\/" reads the same
@@ -111,17 +117,3 @@ def write_replay(csv_path, scene_path, out_path) -> pathlib.Path:
     out_path.parent.mkdir(parents=True, exist_ok=True)
     out_path.write_text(page.replace(DATA_MARKER, block, 1))
     return out_path
-
-
-def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("csv")
-    parser.add_argument("scene")
-    parser.add_argument("out")
-    args = parser.parse_args()
-    out = write_replay(args.csv, args.scene, args.out)
-    print(f"  wrote {out} ({out.stat().st_size // 1024} KiB)")
-
-
-if __name__ == "__main__":
-    main()

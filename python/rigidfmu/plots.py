@@ -7,8 +7,8 @@ import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from mechanical_energy import energies  # noqa: E402
-from replay import colour_of  # noqa: E402
+from rigidfmu.references.mechanical_energy import energies  # noqa: E402
+from rigidfmu.replay import colour_of  # noqa: E402
 
 
 def has(result, column):

@@ -1,7 +1,7 @@
 // Builds dist/replay.html: the page template (src/page.html) with the bundled three.js
 // replay (src/main.js and what it imports, minified by esbuild) inlined, so that the
-// page needs no network and no other file. scripts/replay.py fills in the run's data
-// where the template says <!-- replay-data -->.
+// page needs no network and no other file. rigidfmu.replay (../__init__.py) fills in
+// the run's data where the template says <!-- replay-data -->.
 import { build } from 'esbuild';
 import { mkdirSync, readFileSync, renameSync, writeFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';

@@ -1,0 +1,124 @@
+"""The `rigidfmu` command: build, check and simulate scenes, replay runs.
+
+Conventions as fmpy's command line: results on stdout (the files written), messages
+on stderr, exit status 0 on success, 1 when the work failed (a refused scene, a
+failed simulation), 2 for a wrong command line.
+"""
+import argparse
+import pathlib
+import sys
+
+# the commands import what they use: `rigidfmu build` needs neither fmpy nor numpy
+from rigidfmu import __version__, fmu_package, native
+from rigidfmu.errors import RigidfmuError
+
+EXIT_FAILED = 1
+
+
+def fail(message: str) -> int:
+    print(f"rigidfmu: {message}", file=sys.stderr)
+    return EXIT_FAILED
+
+
+def existing_file(text: str) -> pathlib.Path:
+    path = pathlib.Path(text)
+    if not path.is_file():
+        raise argparse.ArgumentTypeError(f"no such file: {text}")
+    return path.resolve()
+
+
+def build_scene(scene: pathlib.Path, out: pathlib.Path, build_core: bool = True) -> pathlib.Path:
+    core = native.find(build=build_core)
+    bundled = fmu_package.package(scene, out, core)
+    print(f"rigidfmu: {scene.name} -> {out}" + (f" (bundled: {', '.join(bundled)})" if bundled else ""),
+          file=sys.stderr)
+    return out
+
+
+def cmd_build(args) -> int:
+    out = (args.output or pathlib.Path(args.scene.stem + ".fmu")).resolve()
+    build_scene(args.scene, out, build_core=not args.no_build)
+    print(out)
+    return 0
+
+
+def cmd_check(args) -> int:
+    described = fmu_package.describe(args.scene, native.find())
+    print(f"{args.scene}: the scene is valid (model {described.model_identifier}, modules {described.modules})")
+    return 0
+
+
+def cmd_simulate(args) -> int:
+    from rigidfmu import replay, simulate
+
+    out_dir = args.out.resolve()
+    target = args.target
+    if target.suffix == ".json":
+        target = build_scene(target, out_dir / f"{target.stem}.fmu")
+    files = simulate.simulate(target, out_dir, args.stop_time, args.output_interval, plot=args.plot)
+    if args.replay:
+        files.append(replay.write_replay(files[0], simulate.scene_of(target), out_dir / f"{target.stem}.html"))
+    for f in files:
+        print(f)
+    return 0
+
+
+def cmd_replay(args) -> int:
+    from rigidfmu import replay
+
+    out = args.output or args.csv.with_suffix(".html")
+    print(replay.write_replay(args.csv, args.scene, out))
+    return 0
+
+
+def parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="rigidfmu", description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--version", action="version", version=f"rigidfmu {__version__}")
+    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    b = sub.add_parser("build", help="build the FMU of a scene",
+                       description="Builds the FMI 2.0 Co-Simulation FMU of one scene: its variables, and "
+                                   "only the physics modules and libraries the scene uses.")
+    b.add_argument("scene", type=existing_file, metavar="SCENE", help="scene file (JSON, docs/scene-format.md)")
+    b.add_argument("-o", "--output", type=pathlib.Path, metavar="OUT.fmu",
+                   help="the FMU to write (default: the scene's file name with .fmu, here)")
+    b.add_argument("--no-build", action="store_true",
+                   help="in the source tree, package from the build tree as it is (no CMake build first)")
+    b.set_defaults(run=cmd_build)
+
+    c = sub.add_parser("check", help="check a scene against the scene format's rules",
+                       description="Checks a scene file; a broken rule is reported with the field it concerns "
+                                   "and the limit, and exit status 1.")
+    c.add_argument("scene", type=existing_file, metavar="SCENE")
+    c.set_defaults(run=cmd_check)
+
+    s = sub.add_parser("simulate", help="simulate an FMU (or a scene, built first) with fmpy",
+                       description="Simulates with fmpy from 0 to the stop time and writes OUT/<name>.csv; "
+                                   "--plot adds the PNG figures, --replay the 3D replay page.")
+    s.add_argument("target", type=existing_file, metavar="FMU|SCENE", help="an FMU, or a scene file (.json)")
+    s.add_argument("--stop-time", type=float, default=5.0, help="s (default 5)")
+    s.add_argument("--output-interval", type=float, default=0.01, help="s between output rows (default 0.01)")
+    s.add_argument("--out", type=pathlib.Path, default=pathlib.Path("out"), help="folder for the results (default out)")
+    s.add_argument("--plot", action="store_true", help="write the run's figures (PNG)")
+    s.add_argument("--replay", action="store_true", help="write the run's 3D replay (self-contained HTML)")
+    s.set_defaults(run=cmd_simulate)
+
+    r = sub.add_parser("replay", help="the 3D replay page of a run",
+                       description="Writes one self-contained HTML file (three.js inlined) that replays a "
+                                   "result CSV of the scene in any browser, offline.")
+    r.add_argument("csv", type=existing_file, metavar="RESULT.csv")
+    r.add_argument("scene", type=existing_file, metavar="SCENE")
+    r.add_argument("-o", "--output", type=pathlib.Path, metavar="OUT.html", help="default: the CSV's name with .html")
+    r.set_defaults(run=cmd_replay)
+    return p
+
+
+def main(argv=None) -> int:
+    args = parser().parse_args(argv)
+    try:
+        return args.run(args)
+    except RigidfmuError as e:
+        return fail(str(e))
+    except KeyboardInterrupt:
+        return fail("interrupted")

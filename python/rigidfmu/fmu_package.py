@@ -1,0 +1,99 @@
+"""One scene into one FMU (a zip):
+
+    modelDescription.xml
+    binaries/linux64/<modelIdentifier>.so   the prebuilt library with just the modules
+                                            the scene needs (src/modules.h), plus the
+                                            shared libraries it needs beyond the C and
+                                            C++ runtime, found through RUNPATH $ORIGIN
+    resources/scene.json
+
+The describe tool checks the scene first; its message names the field and the limit.
+"""
+import pathlib
+import re
+import shutil
+import subprocess
+import tempfile
+import zipfile
+from dataclasses import dataclass
+
+from rigidfmu import native as native_module
+from rigidfmu.errors import PackagingError, SceneError
+
+# Libraries every Linux machine has (the C and C++ runtime), never carried; nor the
+# sanitizer runtimes, which a sanitizer build's host process preloads.
+SYSTEM_LIBRARIES = re.compile(
+    r"^(ld-linux.*|libc|libm|libstdc\+\+|libgcc_s|libpthread|libdl|librt|libasan|libubsan)\.so(\.|$)")
+
+
+@dataclass(frozen=True)
+class Description:
+    model_description: bytes
+    model_identifier: str
+    modules: str
+
+
+def describe(scene: pathlib.Path, native: native_module.Native) -> Description:
+    """The scene checked and described by the core; SceneError with the core's message."""
+    with tempfile.TemporaryDirectory(prefix="rigidfmu-describe-") as out:
+        run = subprocess.run([str(native.describe), str(scene), out], capture_output=True, text=True)
+        if run.returncode != 0:
+            raise SceneError(run.stderr.strip() or f"{scene}: refused (exit status {run.returncode})")
+        folder = pathlib.Path(out)
+        return Description((folder / "modelDescription.xml").read_bytes(),
+                           (folder / "model_identifier").read_text().strip(),
+                           (folder / "modules").read_text().strip())
+
+
+def runtime_dependencies(library: pathlib.Path) -> list[pathlib.Path]:
+    """The shared libraries `library` loads, transitively, beyond the system's (ldd)."""
+    run = subprocess.run(["ldd", str(library)], capture_output=True, text=True)
+    if run.returncode != 0:
+        raise PackagingError(f"ldd {library}: {run.stderr.strip()}")
+    found = []
+    for line in run.stdout.splitlines():
+        parts = line.split()
+        if "=>" not in parts:
+            continue  # the vdso, or the loader by its absolute path
+        name, target = parts[0], parts[parts.index("=>") + 1]
+        if SYSTEM_LIBRARIES.match(name):
+            continue
+        if target == "not":
+            raise PackagingError(f"{library} needs {name}, which is not installed")
+        found.append(pathlib.Path(target))
+    return found
+
+
+def bundle(dependency: pathlib.Path, folder: pathlib.Path) -> None:
+    """A dependency beside the binary, with RUNPATH $ORIGIN so that each finds the
+    others there."""
+    patchelf = shutil.which("patchelf")
+    if not patchelf:
+        raise PackagingError(f"patchelf is needed to bundle {dependency.name} (scripts/setup.sh installs it)")
+    copy = folder / dependency.name
+    shutil.copyfile(dependency, copy)
+    subprocess.run([patchelf, "--set-rpath", "$ORIGIN", str(copy)], check=True)
+
+
+def package(scene: pathlib.Path, out: pathlib.Path, native: native_module.Native) -> list[str]:
+    """Writes the FMU of `scene` to `out`; returns the names of the bundled libraries."""
+    described = describe(scene, native)
+    library = native.library(described.modules)
+    if not library.exists():
+        raise PackagingError(f"no binary for modules {described.modules}: {library}")
+    with tempfile.TemporaryDirectory(prefix="rigidfmu-fmu-") as stage:
+        binaries = pathlib.Path(stage) / "binaries" / "linux64"
+        binaries.mkdir(parents=True)
+        shutil.copyfile(library, binaries / f"{described.model_identifier}.so")
+        dependencies = runtime_dependencies(library)
+        for dependency in dependencies:
+            bundle(dependency, binaries)
+        out.parent.mkdir(parents=True, exist_ok=True)
+        partial = out.with_name(out.name + ".partial")
+        with zipfile.ZipFile(partial, "w", zipfile.ZIP_DEFLATED) as z:
+            z.writestr("modelDescription.xml", described.model_description)
+            for f in sorted(binaries.iterdir()):
+                z.write(f, f"binaries/linux64/{f.name}")
+            z.write(scene, "resources/scene.json")
+        partial.replace(out)  # a reader never sees half an FMU
+    return [d.name for d in dependencies]

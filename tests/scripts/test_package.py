@@ -1,0 +1,120 @@
+"""The `rigidfmu` package and command: every command's help, a refused scene's message
+and exit status, and the package installed into a fresh venv that builds and
+simulates an FMU from a folder outside this source tree, the same FMU as
+scripts/build_fmu.sh makes."""
+import json
+import os
+import pathlib
+import subprocess
+import sys
+import tomllib
+import zipfile
+
+import numpy as np
+import pytest
+from fmpy import simulate_fmu
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+BUILD = pathlib.Path(os.environ.get("RIGIDFMU_BUILD", ROOT / "build")).resolve()
+ENV = dict(os.environ, RIGIDFMU_SKIP_SETUP="1")
+COMMANDS = ("build", "check", "simulate", "replay")
+
+
+def rigidfmu(*args, python=sys.executable, env=ENV, cwd=ROOT):
+    return subprocess.run([str(python), "-m", "rigidfmu", *map(str, args)], capture_output=True, text=True,
+                          env=env, cwd=cwd)
+
+
+def test_help_of_the_command_and_of_every_subcommand():
+    top = rigidfmu("--help")
+    assert top.returncode == 0
+    for command in COMMANDS:
+        assert command in top.stdout
+        sub = rigidfmu(command, "--help")
+        assert sub.returncode == 0, sub.stderr
+        assert sub.stdout.startswith(f"usage: rigidfmu {command}")
+
+
+@pytest.mark.parametrize("body, field, message", [
+    ({"name": "a", "mass": 1.0}, "bodies[0].shape", "is required"),
+    ({"name": "a", "shape": {"type": "sphere", "radius": 0.1}, "mass": -1}, "bodies[0].mass", "must be > 0, got -1"),
+])
+def test_a_malformed_scene_fails_with_the_fields_message(tmp_path, body, field, message):
+    scene = tmp_path / "bad.json"
+    scene.write_text(json.dumps({"name": "Bad", "bodies": [body]}))
+    for command in ("check", "build"):
+        run = rigidfmu(command, scene, cwd=tmp_path)
+        assert run.returncode == 1
+        assert f"{field}: {message}" in run.stderr
+        assert "Traceback" not in run.stderr
+    assert not (tmp_path / "bad.fmu").exists()
+
+
+def test_a_wrong_command_line_is_a_usage_error(tmp_path):
+    run = rigidfmu("build", tmp_path / "missing.json")
+    assert run.returncode == 2 and "no such file" in run.stderr
+
+
+def test_check_accepts_every_example_scene():
+    for scene in sorted((ROOT / "scripts" / "scenes").glob("*.json")):
+        run = rigidfmu("check", scene)
+        assert run.returncode == 0, run.stderr
+        assert "the scene is valid" in run.stdout
+
+
+def members(fmu):
+    with zipfile.ZipFile(fmu) as z:
+        return {name: z.read(name) for name in z.namelist()}
+
+
+@pytest.fixture(scope="module")
+def installed(tmp_path_factory):
+    """A fresh venv with the package installed from this tree, taking the binaries of
+    the tests' build tree as they are (RIGIDFMU_PREBUILT: nothing compiled again)."""
+    venv = tmp_path_factory.mktemp("venv")
+    subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
+    pip = [str(venv / "bin" / "python"), "-m", "pip", "install", "-q", "--disable-pip-version-check"]
+    backend = tomllib.loads((ROOT / "pyproject.toml").read_text())["build-system"]["requires"][0]
+    subprocess.run([*pip, backend], check=True)
+    subprocess.run([*pip, "--no-build-isolation", f"--config-settings=cmake.define.RIGIDFMU_PREBUILT={BUILD}",
+                    str(ROOT)], check=True, cwd=ROOT)
+    env = {k: v for k, v in os.environ.items() if k not in ("RIGIDFMU_BUILD", "PYTHONPATH", "LD_PRELOAD")}
+    return venv, env
+
+
+def test_the_installed_command_builds_the_same_fmu_outside_the_tree(installed, tmp_path, fmu_of):
+    venv, env = installed
+    work = tmp_path / "elsewhere"
+    work.mkdir()
+    scene = json.loads((ROOT / "scripts" / "scenes" / "default.json").read_text())
+    (work / "scene.json").write_text(json.dumps(scene))
+
+    where = subprocess.run([str(venv / "bin" / "python"), "-c", "import rigidfmu, rigidfmu.native as n; "
+                            "print(rigidfmu.__file__); print(n.find(build=False).directory)"],
+                           capture_output=True, text=True, env=env, cwd=work, check=True).stdout.split()
+    assert all(pathlib.Path(p).is_relative_to(venv) for p in where), where
+
+    run = subprocess.run([str(venv / "bin" / "rigidfmu"), "build", "scene.json", "-o", "x.fmu"],
+                         capture_output=True, text=True, env=env, cwd=work)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip() == str(work / "x.fmu")
+    ours = members(work / "x.fmu")
+    theirs = members(fmu_of(scene))  # scripts/build_fmu.sh in this tree
+    assert sorted(ours) == sorted(theirs)
+    for name in ours:
+        if name != "resources/scene.json":  # the same scene, written by another json.dumps
+            assert ours[name] == theirs[name], name
+    assert json.loads(ours["resources/scene.json"]) == scene
+
+    # simulated with fmpy: the same run, bitwise, as the tree's FMU
+    a = simulate_fmu(str(work / "x.fmu"), stop_time=0.5, output_interval=0.01)
+    b = simulate_fmu(str(fmu_of(scene)), stop_time=0.5, output_interval=0.01)
+    assert a.dtype.names == b.dtype.names and len(a) == 51
+    for name in a.dtype.names:
+        assert np.array_equal(a[name], b[name]), name
+
+    # and by the installed command, with its own fmpy (the package's dependencies)
+    run = subprocess.run([str(venv / "bin" / "rigidfmu"), "simulate", "x.fmu", "--stop-time", "0.2",
+                          "--out", "results"], capture_output=True, text=True, env=env, cwd=work)
+    assert run.returncode == 0, run.stderr
+    assert (work / "results" / "x.csv").is_file()

@@ -39,9 +39,9 @@ import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import bench_scenes  # noqa: E402
-from quaternion import rotation_angle  # noqa: E402
+from rigidfmu.references.quaternion import rotation_angle  # noqa: E402
 from report_accuracy import cpu_name  # noqa: E402
-from torque_free import torque_free_reference  # noqa: E402
+from rigidfmu.references.torque_free import torque_free_reference  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 PEERS_PYTHON = ROOT / ".venv-peers" / "bin" / "python"

@@ -15,8 +15,8 @@ import time
 import mujoco
 import numpy as np
 from mujoco_free_body import free_body_model  # noqa: E402
-from quaternion import rotation_angle as angle  # noqa: E402
-from torque_free import torque_free_reference  # noqa: E402
+from rigidfmu.references.quaternion import rotation_angle as angle  # noqa: E402
+from rigidfmu.references.torque_free import torque_free_reference  # noqa: E402
 
 I = np.array([1.0, 2.0, 3.0])
 W0 = np.array([0.01, 5.0, 0.01])

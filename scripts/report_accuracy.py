@@ -37,10 +37,10 @@ import tempfile
 import time
 
 import numpy as np
-from heave import heave  # noqa: E402
+from rigidfmu.references.heave import heave  # noqa: E402
 from fmu_build import ensure_core, package  # noqa: E402
-from torque_free import torque_free_reference  # noqa: E402
-from quaternion import quat_axis_angle, quat_mul, rotation_angle  # noqa: E402
+from rigidfmu.references.torque_free import torque_free_reference  # noqa: E402
+from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 G = 9.81

@@ -17,7 +17,7 @@ import time
 import mujoco
 import numpy as np
 from mujoco_free_body import free_body_model  # noqa: E402
-from quaternion import quat_axis_angle, quat_mul, rotation_angle as angle  # noqa: E402
+from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle as angle  # noqa: E402
 
 I = np.array([2.0, 2.0, 3.0])
 H = 1e-2

@@ -5,12 +5,10 @@ import os
 import pathlib
 import shutil
 import subprocess
-import sys
 
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "scripts"))  # the scripts' shared helpers (quaternion.py)
 BUILD = pathlib.Path(os.environ.get("RIGIDFMU_BUILD", ROOT / "build"))
 FMU_DIR = BUILD / "test-fmus"
 # FMUs are shared between the tests of one session, never across sessions: the code

@@ -1,27 +1,8 @@
-"""Independent references computed in the tests, not by the code under test."""
+"""Independent references computed in the tests, not by the code under test (the
+shared ones live in rigidfmu.references)."""
 import numpy as np
-from scipy.integrate import solve_ivp
 
-from quaternion import quat_mul  # scripts/quaternion.py (tests/conftest.py puts scripts/ on the path)
-
-
-def torque_free(inertia, omega_body0, q0, times):
-    """Euler's equations in the body frame with q' = 1/2 q (0, omega_body), by scipy's
-    DOP853 at rtol 1e-12. Returns q(t) (w, x, y, z) and omega_body(t) at `times`."""
-    I = np.asarray(inertia, dtype=float)
-
-    def rhs(t, y):
-        w = y[:3]
-        q = y[3:]
-        dw = np.cross(I * w, w) / I
-        dq = 0.5 * quat_mul(q, np.r_[0.0, w])
-        return np.r_[dw, dq]
-
-    sol = solve_ivp(rhs, (0.0, float(times[-1])), np.r_[omega_body0, q0], method="DOP853",
-                    rtol=1e-12, atol=1e-14, t_eval=times)
-    assert sol.success
-    q = sol.y[3:].T
-    return q / np.linalg.norm(q, axis=1)[:, None], sol.y[:3].T
+from rigidfmu.references.quaternion import quat_mul
 
 
 def rotation_angle_between(q1, q2):

@@ -5,7 +5,8 @@ import pytest
 from fmpy import simulate_fmu
 
 import scenes
-from reference import loglog_slope, rotation_angle_between, torque_free
+from reference import loglog_slope, rotation_angle_between
+from rigidfmu.references.torque_free import torque_free
 
 INERTIA = (1.0, 2.0, 3.0)
 Q = [f"spinner.orientation[{i}]" for i in (1, 2, 3, 4)]

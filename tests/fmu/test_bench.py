@@ -10,6 +10,8 @@ import subprocess
 
 import pytest
 
+pytestmark = pytest.mark.slow  # a whole script or browser run (pyproject.toml)
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 METHODS = ("euler", "rk4", "symplecticEuler", "splitting", "lieRk4", "dopri5", "rosenbrock")
 FREE_N = (1, 10, 100, 1000)  # quick mode: no 10000

@@ -17,6 +17,8 @@ from PIL import Image
 from rigidfmu.replay import colour_of
 from scenes import body, scene
 
+pytestmark = pytest.mark.slow  # a whole script or browser run (pyproject.toml)
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 ENV = dict(os.environ, RIGIDFMU_SKIP_SETUP="1")
 CHROMIUM = os.environ.get("CHROMIUM", "/usr/bin/chromium")

@@ -9,6 +9,8 @@ import sys
 
 import pytest
 
+pytestmark = pytest.mark.slow  # a whole script or browser run (pyproject.toml)
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 ENV = dict(os.environ, RIGIDFMU_SKIP_SETUP="1")
 SCRIPT = str(ROOT / "scripts" / "report_accuracy.py")

@@ -5,6 +5,10 @@ import re
 import subprocess
 import sys
 
+import pytest
+
+pytestmark = pytest.mark.slow  # a whole script or browser run (pyproject.toml)
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 ENV = dict(os.environ, RIGIDFMU_SKIP_SETUP="1")
 

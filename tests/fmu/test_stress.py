@@ -8,11 +8,14 @@ import re
 import subprocess
 import sys
 
+import pytest
 from fmpy import read_model_description
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "scripts"))
 import stress  # noqa: E402  (the case list, to check the table against it)
+
+pytestmark = pytest.mark.slow  # a whole script or browser run (pyproject.toml)
 
 
 def methods_of_the_fmu(fmu_of):

@@ -16,6 +16,8 @@ import pytest
 from harness import Slave, status_of
 from scenes import body, scene
 
+pytestmark = pytest.mark.slow  # a whole script or browser run (pyproject.toml)
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 H, STEPS = 0.01, 100  # communication step and count: 1 s
 

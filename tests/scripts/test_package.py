@@ -82,6 +82,7 @@ def installed(tmp_path_factory):
     return venv, env
 
 
+@pytest.mark.slow
 def test_the_installed_command_builds_the_same_fmu_outside_the_tree(installed, tmp_path, fmu_of):
     venv, env = installed
     work = tmp_path / "elsewhere"

@@ -4,6 +4,7 @@ import ctypes
 import pathlib
 import shutil
 import tempfile
+import threading
 
 from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException
@@ -15,6 +16,12 @@ _libc = ctypes.CDLL(None)
 _libc.calloc.restype = ctypes.c_void_p
 _libc.calloc.argtypes = [ctypes.c_size_t, ctypes.c_size_t]
 _libc.free.argtypes = [ctypes.c_void_p]
+
+# fmpy loads an FMU's library by changing the process's working directory to the
+# binaries folder and back (fmpy/fmi1.py, _FMU.__init__): two loads in threads at once
+# can leave a thread in another instance's folder, which is deleted when that instance
+# closes (FileNotFoundError from os.getcwd). Loads are serialised; the FMI calls are not.
+_loading = threading.Lock()
 
 
 class Recorder:
@@ -49,9 +56,10 @@ class Slave:
         self.dir = unzip_dir or extract(self.fmu, unzipdir=tempfile.mkdtemp(prefix="rigidfmu-"))
         self.vars = {v.name: v for v in self.md.modelVariables}
         self.log = Recorder()
-        self.slave = FMU2Slave(guid=self.md.guid, unzipDirectory=self.dir,
-                               modelIdentifier=self.md.coSimulation.modelIdentifier,
-                               instanceName=instance_name)
+        with _loading:
+            self.slave = FMU2Slave(guid=self.md.guid, unzipDirectory=self.dir,
+                                   modelIdentifier=self.md.coSimulation.modelIdentifier,
+                                   instanceName=instance_name)
         if instantiate:
             self.slave.instantiate(callbacks=self.log.callbacks, loggingOn=False)
 

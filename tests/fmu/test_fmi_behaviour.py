@@ -4,6 +4,7 @@ import pathlib
 import shutil
 import tempfile
 import threading
+import traceback
 import urllib.parse
 
 import numpy as np
@@ -274,12 +275,20 @@ def test_instances_in_threads_give_the_serial_results(fmu):
         finally:
             s.close()
 
-    serial, threaded = {}, {}
+    serial, threaded, errors = {}, {}, []
     for k in range(4):
         job(k, serial)
-    threads = [threading.Thread(target=job, args=(k, threaded)) for k in range(4)]
+
+    def threaded_job(k):
+        try:
+            job(k, threaded)
+        except BaseException:  # a thread's exception would otherwise be lost
+            errors.append(traceback.format_exc())
+
+    threads = [threading.Thread(target=threaded_job, args=(k,)) for k in range(4)]
     for t in threads:
         t.start()
     for t in threads:
         t.join()
+    assert not errors, errors[0]
     assert threaded == serial

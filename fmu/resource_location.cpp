@@ -15,6 +15,18 @@ int hexDigit(char c) {
 
 bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 
+// On Windows a file URI's path starts with its drive: file:///C:/dir is C:/dir (RFC 8089,
+// appendix E.2), as fmpy and the FMI tools there write it.
+#ifdef _WIN32
+constexpr bool kDriveLetters = true;
+#else
+constexpr bool kDriveLetters = false;
+#endif
+
+bool isDrive(const std::string& p, size_t at) {
+  return p.size() >= at + 2 && std::isalpha(static_cast<unsigned char>(p[at])) && p[at + 1] == ':';
+}
+
 }  // namespace
 
 std::optional<std::string> resourceDirectory(const char* uri, std::string& why) {
@@ -53,8 +65,9 @@ std::optional<std::string> resourceDirectory(const char* uri, std::string& why) 
   }
   // file:////abs and file:///abs both mean /abs on this platform.
   while (startsWith(path, "//")) path.erase(0, 1);
+  if (kDriveLetters && startsWith(path, "/") && isDrive(path, 1)) path.erase(0, 1);
   while (path.size() > 1 && path.back() == '/') path.pop_back();
-  if (!startsWith(path, "/")) {
+  if (!startsWith(path, "/") && !(kDriveLetters && isDrive(path, 0))) {
     why = std::string("resource location \"") + uri + "\" is not an absolute file URI";
     return std::nullopt;
   }

@@ -1,5 +1,6 @@
 """The table of example FMUs (docs/reports/fmus.md): for each scene in scripts/scenes/, the FMU's
-size, its bundled libraries, its number of variables and its cost per internal step
+size, what its binaries weigh per platform (unpacked: linux64's library with the
+libraries bundled beside it, win64's one DLL), its bundled libraries, its number of variables and its cost per internal step
 (median of repeated runs through fmpy, 1 s communication steps). Rewrites the part of
 docs/reports/fmus.md between the fmu-table markers, or prints the table with --print.
 
@@ -23,8 +24,9 @@ BEGIN, END = "<!-- fmu-table:begin -->", "<!-- fmu-table:end -->"
 
 def table(build_dir, quick):
     seconds, repeats = (1, 1) if quick else (5, 5)
-    rows = ["| scene | FMU size | bundled libraries | variables | cost per step |",
-            "|---|---:|---|---:|---:|"]
+    rows = ["| scene | FMU size | linux64 binaries | win64 binary | bundled libraries (linux64) | variables "
+            "| cost per step |",
+            "|---|---:|---:|---:|---|---:|---:|"]
     with tempfile.TemporaryDirectory() as folder:
         for scene in sorted((ROOT / "scripts" / "scenes").glob("*.json")):
             fmu = pathlib.Path(folder, scene.stem + ".fmu")
@@ -35,8 +37,13 @@ def table(build_dir, quick):
             with zipfile.ZipFile(fmu) as z:
                 libs = sorted(pathlib.Path(n).name for n in z.namelist()
                               if n.startswith("binaries/linux64/lib"))
+                weight = {platform: sum(i.file_size for i in z.infolist()
+                                        if i.filename.startswith(f"binaries/{platform}/"))
+                          for platform in ("linux64", "win64")}
             us = seconds_per_internal_step(fmu, 0.5, seconds * 2, repeats) * 1e6
+            win64 = f"{weight['win64'] / 1024:.0f} KiB" if weight["win64"] else "none"
             rows.append(f"| `{scene.name}` ({md.modelName}) | {fmu.stat().st_size / 1024:.0f} KiB | "
+                        f"{weight['linux64'] / 1024:.0f} KiB | {win64} | "
                         f"{', '.join(libs) if libs else 'none'} | {len(md.modelVariables)} | {us:.2f} µs |")
     return "\n".join(rows)
 

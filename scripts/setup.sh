@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs everything rigidfmu needs on a fresh Debian machine: the Debian packages
 # (compiler, CMake, Eigen, FCL, nlohmann-json, GoogleTest, chromium for the replay's
-# browser test), a Python venv (.venv) with the pinned packages of requirements.txt and
+# browser test; MinGW-w64, dpkg-dev and a deb-src entry for the win64 binaries, which
+# scripts/win64_deps.sh builds from Debian's FCL and libccd sources, and wine64 to test
+# them), a Python venv (.venv) with the pinned packages of requirements.txt and
 # the replay page's npm packages (python/rigidfmu/replay/page/package-lock.json; Node.js and npm come
 # with the machine). Idempotent and quick when done.
 set -euo pipefail
@@ -11,14 +13,24 @@ debian_packages=(
   build-essential cmake python3-venv patchelf
   libeigen3-dev libfcl-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
   chromium
+  g++-mingw-w64-x86-64-posix dpkg-dev wine64
 )
+sudo_cmd=(); [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+# Debian's source packages (apt-get source fcl libccd, scripts/win64_deps.sh)
+sources=/etc/apt/sources.list.d/rigidfmu-deb-src.sources
+if [ -z "$(apt-cache showsrc libccd 2>/dev/null)" ]; then
+  echo "setup: adding Debian's source packages ($sources)"
+  . /etc/os-release
+  printf 'Types: deb-src\nURIs: http://deb.debian.org/debian\nSuites: %s %s-updates\nComponents: main\nSigned-By: /usr/share/keyrings/debian-archive-keyring.gpg\n' \
+    "$VERSION_CODENAME" "$VERSION_CODENAME" | "${sudo_cmd[@]}" tee "$sources" >/dev/null
+  "${sudo_cmd[@]}" apt-get update -qq
+fi
 missing=()
 for p in "${debian_packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if ((${#missing[@]})); then
   echo "setup: installing Debian packages: ${missing[*]}"
-  sudo_cmd=(); [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
   "${sudo_cmd[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi

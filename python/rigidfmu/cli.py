@@ -27,23 +27,27 @@ def existing_file(text: str) -> pathlib.Path:
     return path.resolve()
 
 
-def build_scene(scene: pathlib.Path, out: pathlib.Path, build_core: bool = True) -> pathlib.Path:
-    core = native.find(build=build_core)
+def build_scene(scene: pathlib.Path, out: pathlib.Path, build_core: bool = True, win64: bool = True) -> pathlib.Path:
+    core = native.find(build=build_core, win64=win64)
     bundled = fmu_package.package(scene, out, core)
-    print(f"rigidfmu: {scene.name} -> {out}" + (f" (bundled: {', '.join(bundled)})" if bundled else ""),
+    platforms = "linux64" + (", win64" if core.win64 else "")
+    print(f"rigidfmu: {scene.name} -> {out} ({platforms})" + (f", bundled: {', '.join(bundled)}" if bundled else ""),
           file=sys.stderr)
+    if win64 and not core.win64:
+        print("rigidfmu: no win64 binary: this installation or build tree has none "
+              "(scripts/build_win64.sh cross-compiles them with MinGW-w64)", file=sys.stderr)
     return out
 
 
 def cmd_build(args) -> int:
     out = (args.output or pathlib.Path(args.scene.stem + ".fmu")).resolve()
-    build_scene(args.scene, out, build_core=not args.no_build)
+    build_scene(args.scene, out, build_core=not args.no_build, win64=not args.no_win64)
     print(out)
     return 0
 
 
 def cmd_check(args) -> int:
-    described = fmu_package.describe(args.scene, native.find())
+    described = fmu_package.describe(args.scene, native.find(win64=False))
     print(f"{args.scene}: the scene is valid (model {described.model_identifier}, modules {described.modules})")
     return 0
 
@@ -54,7 +58,7 @@ def cmd_simulate(args) -> int:
     out_dir = args.out.resolve()
     target = args.target
     if target.suffix == ".json":
-        target = build_scene(target, out_dir / f"{target.stem}.fmu")
+        target = build_scene(target, out_dir / f"{target.stem}.fmu", win64=not args.no_win64)
     files = simulate.simulate(target, out_dir, args.stop_time, args.output_interval, plot=args.plot)
     if args.replay:
         files.append(replay.write_replay(files[0], simulate.scene_of(target), out_dir / f"{target.stem}.html"))
@@ -85,6 +89,8 @@ def parser() -> argparse.ArgumentParser:
                    help="the FMU to write (default: the scene's file name with .fmu, here)")
     b.add_argument("--no-build", action="store_true",
                    help="in the source tree, package from the build tree as it is (no CMake build first)")
+    b.add_argument("--no-win64", action="store_true",
+                   help="leave out binaries/win64 (by default the FMU carries linux64 and win64 binaries)")
     b.set_defaults(run=cmd_build)
 
     c = sub.add_parser("check", help="check a scene against the scene format's rules",
@@ -102,6 +108,7 @@ def parser() -> argparse.ArgumentParser:
     s.add_argument("--out", type=pathlib.Path, default=pathlib.Path("out"), help="folder for the results (default out)")
     s.add_argument("--plot", action="store_true", help="write the run's figures (PNG)")
     s.add_argument("--replay", action="store_true", help="write the run's 3D replay (self-contained HTML)")
+    s.add_argument("--no-win64", action="store_true", help="a scene's FMU without binaries/win64 (see build)")
     s.set_defaults(run=cmd_simulate)
 
     r = sub.add_parser("replay", help="the 3D replay page of a run",

@@ -5,6 +5,9 @@
                                             the scene needs (src/modules.h), plus the
                                             shared libraries it needs beyond the C and
                                             C++ runtime, found through RUNPATH $ORIGIN
+    binaries/win64/<modelIdentifier>.dll    the same sources cross-compiled with
+                                            MinGW-w64, everything linked in statically:
+                                            it needs only Windows' own DLLs
     resources/scene.json
 
 The describe tool checks the scene first; its message names the field and the limit.
@@ -76,11 +79,15 @@ def bundle(dependency: pathlib.Path, folder: pathlib.Path) -> None:
 
 
 def package(scene: pathlib.Path, out: pathlib.Path, native: native_module.Native) -> list[str]:
-    """Writes the FMU of `scene` to `out`; returns the names of the bundled libraries."""
+    """Writes the FMU of `scene` to `out`, with a win64 binary when `native` has them;
+    returns the names of the bundled libraries."""
     described = describe(scene, native)
     library = native.library(described.modules)
     if not library.exists():
         raise PackagingError(f"no binary for modules {described.modules}: {library}")
+    dll = native.win64_library(described.modules)
+    if dll is not None and not dll.exists():
+        raise PackagingError(f"no win64 binary for modules {described.modules}: {dll}")
     with tempfile.TemporaryDirectory(prefix="rigidfmu-fmu-") as stage:
         binaries = pathlib.Path(stage) / "binaries" / "linux64"
         binaries.mkdir(parents=True)
@@ -94,6 +101,8 @@ def package(scene: pathlib.Path, out: pathlib.Path, native: native_module.Native
             z.writestr("modelDescription.xml", described.model_description)
             for f in sorted(binaries.iterdir()):
                 z.write(f, f"binaries/linux64/{f.name}")
+            if dll is not None:
+                z.write(dll, f"binaries/win64/{described.model_identifier}.dll")
             z.write(scene, "resources/scene.json")
         partial.replace(out)  # a reader never sees half an FMU
     return [d.name for d in dependencies]

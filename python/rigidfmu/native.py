@@ -1,9 +1,11 @@
 """Where the C++ core's binaries are: the scene checker `rigidfmu-describe` and one FMU
-library per combination of physics modules (rigidfmu_fmi2_<mask>.so, src/modules.h).
+library per combination of physics modules (rigidfmu_fmi2_<mask>.so, src/modules.h),
+with its win64 twin (rigidfmu_fmi2_<mask>.dll, cross-compiled with MinGW-w64).
 
-An installed package carries them in rigidfmu/_native (CMake's install rules put them
-there when pip builds the wheel). In the source tree they are in the CMake build tree,
-build/ or $RIGIDFMU_BUILD, which is configured and brought up to date first, as
+An installed package carries them in rigidfmu/_native and rigidfmu/_native/win64
+(CMake's install rules put them there when pip builds the wheel). In the source tree
+they are in the CMake build trees, build/ (or $RIGIDFMU_BUILD) and build-win64/ (or
+$RIGIDFMU_BUILD_WIN64, scripts/build_win64.sh), which are brought up to date first, as
 scripts/build_fmu.sh always did.
 """
 import os
@@ -23,6 +25,7 @@ CMAKE = "/usr/bin/cmake"  # Debian's, as the scripts use: not the venv's PyPI cm
 @dataclass(frozen=True)
 class Native:
     directory: pathlib.Path
+    win64: pathlib.Path | None = None  # the DLLs' folder, None: this installation has none
 
     @property
     def describe(self) -> pathlib.Path:
@@ -31,6 +34,9 @@ class Native:
     def library(self, modules: str) -> pathlib.Path:
         """The FMU library for a module mask (the describe tool's `modules`)."""
         return self.directory / f"rigidfmu_fmi2_{modules}.so"
+
+    def win64_library(self, modules: str) -> pathlib.Path | None:
+        return self.win64 / f"rigidfmu_fmi2_{modules}.dll" if self.win64 else None
 
 
 def in_source_tree() -> bool:
@@ -47,14 +53,44 @@ def build_core(build: pathlib.Path) -> None:
                     "rigidfmu-describe", "rigidfmu_fmus"], check=True, stdout=subprocess.DEVNULL)
 
 
-def find(build: bool = True) -> Native:
+def build_win64(build: pathlib.Path) -> None:
+    """Cross-compiles the DLLs into `build` (scripts/build_win64.sh: MinGW-w64, FCL and
+    libccd from Debian's sources, cached per machine)."""
+    env = dict(os.environ, RIGIDFMU_BUILD_WIN64=str(build))
+    subprocess.run([str(SOURCE_ROOT / "scripts" / "build_win64.sh")], check=True, env=env,
+                   stdout=subprocess.DEVNULL)
+
+
+def find_win64(build: bool = True) -> pathlib.Path | None:
+    """The source tree's win64 build tree, brought up to date unless `build` is false;
+    None when it is not to be built and has no DLLs."""
+    tree = pathlib.Path(os.environ.get("RIGIDFMU_BUILD_WIN64") or SOURCE_ROOT / "build-win64").resolve()
+    built = any(tree.glob("rigidfmu_fmi2_*.dll"))
+    if not build and not built:
+        return None
+    prebuilt = built and not (tree / "CMakeCache.txt").exists()
+    if build and not prebuilt:
+        if not in_source_tree():
+            raise NativeError(f"RIGIDFMU_BUILD_WIN64={tree} needs the source tree to build in")
+        try:
+            build_win64(tree)
+        except subprocess.CalledProcessError as e:
+            raise NativeError(f"cross-compiling the win64 binaries in {tree} failed ({e}); "
+                              "--no-win64 leaves them out") from e
+    return tree
+
+
+def find(build: bool = True, win64: bool = True) -> Native:
     """The binaries to package from: $RIGIDFMU_BUILD when set (a build tree: the
     sanitizer build, say), else the installed ones, else the source tree's build/.
     A build tree is brought up to date first unless `build` is false or it holds
-    binaries but no CMake cache (a prebuilt copy)."""
+    binaries but no CMake cache (a prebuilt copy). With `win64`, the win64 DLLs as
+    well: an installation's own (none when it was built without them), or the source
+    tree's cross build."""
     chosen = os.environ.get("RIGIDFMU_BUILD")
     if not chosen and (INSTALLED / "rigidfmu-describe").exists():
-        return Native(INSTALLED)
+        dlls = INSTALLED / "win64"
+        return Native(INSTALLED, dlls if win64 and any(dlls.glob("*.dll")) else None)
     if not chosen:
         if not in_source_tree():
             raise NativeError(f"no core binaries: {INSTALLED} is missing (reinstall the package)")
@@ -68,7 +104,7 @@ def find(build: bool = True) -> Native:
             build_core(tree)
         except subprocess.CalledProcessError as e:
             raise NativeError(f"building the core in {tree} failed ({e})") from e
-    native = Native(tree)
+    native = Native(tree, find_win64(build) if win64 else None)
     if not native.describe.exists():
         raise NativeError(f"no rigidfmu-describe in {tree}")
     return native

@@ -33,3 +33,6 @@ def test_fmu_table_lists_every_example_scene():
     assert [re.match(r"\| `([^`]+)`", l).group(1) for l in lines] == scenes
     spinner = next(l for l in lines if "spinner.json" in l)
     assert "| none |" in spinner  # a lone body ships no extra library
+    for line in lines:  # both platforms' binaries weighed
+        linux64, win64 = line.split("|")[3:5]
+        assert linux64.strip().endswith(" KiB") and win64.strip().endswith(" KiB"), line

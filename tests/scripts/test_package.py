@@ -68,16 +68,20 @@ def members(fmu):
 
 
 @pytest.fixture(scope="module")
-def installed(tmp_path_factory):
+def installed(tmp_path_factory, fmu_of):
     """A fresh venv with the package installed from this tree, taking the binaries of
-    the tests' build tree as they are (RIGIDFMU_PREBUILT: nothing compiled again)."""
+    the tests' build trees as they are (RIGIDFMU_PREBUILT and RIGIDFMU_PREBUILT_WIN64:
+    nothing compiled again)."""
+    fmu_of(json.loads((ROOT / "scripts" / "scenes" / "default.json").read_text()))  # both trees built
+    win64 = pathlib.Path(os.environ.get("RIGIDFMU_BUILD_WIN64") or ROOT / "build-win64")
     venv = tmp_path_factory.mktemp("venv")
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
     pip = [str(venv / "bin" / "python"), "-m", "pip", "install", "-q", "--disable-pip-version-check"]
     backend = tomllib.loads((ROOT / "pyproject.toml").read_text())["build-system"]["requires"][0]
     subprocess.run([*pip, backend], check=True)
     subprocess.run([*pip, "--no-build-isolation", f"--config-settings=cmake.define.RIGIDFMU_PREBUILT={BUILD}",
-                    str(ROOT)], check=True, cwd=ROOT)
+                    f"--config-settings=cmake.define.RIGIDFMU_PREBUILT_WIN64={win64}", str(ROOT)],
+                   check=True, cwd=ROOT)
     env = {k: v for k, v in os.environ.items() if k not in ("RIGIDFMU_BUILD", "PYTHONPATH", "LD_PRELOAD")}
     return venv, env
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "body.h"
+#include "builders.h"
 #include "medium.h"
 #include "medium_detail.h"
 
@@ -30,32 +31,10 @@ constexpr double kLatheCentroidError = 3e-3;    // of the body's largest dimensi
 constexpr double kSphereMultiAxisError = 1e-3;    // of the ball's volume, cut along 2-3 axes
 constexpr double kSphereCentroidError = 1e-2;     // of the radius
 
-Shape sphere(double r) {
-  Shape s;
-  s.type = ShapeType::Sphere;
-  s.radius = r;
-  return s;
-}
-Shape box(double lx, double ly, double lz) {
-  Shape s;
-  s.type = ShapeType::Box;
-  s.size = Vec3(lx, ly, lz);
-  return s;
-}
-Shape cylinder(double r, double l) {
-  Shape s;
-  s.type = ShapeType::Cylinder;
-  s.radius = r;
-  s.length = l;
-  return s;
-}
-Shape capsule(double r, double l) {
-  Shape s;
-  s.type = ShapeType::Capsule;
-  s.radius = r;
-  s.length = l;
-  return s;
-}
+using rigid::test::box;
+using rigid::test::capsule;
+using rigid::test::cylinder;
+using rigid::test::sphere;
 
 Mat3 rotX(double a) { return Eigen::AngleAxisd(a, Vec3::UnitX()).toRotationMatrix(); }
 Mat3 rotation(double angle, const Vec3& axis) {
@@ -421,13 +400,7 @@ TEST(Submerged, TiltedCylinderAndCapsuleMatchTheRayIntegration) {
 
 namespace {
 
-rigid::BodyConstants makeBody(const Shape& s, double mass) {
-  rigid::BodyConstants b;
-  b.name = "b";
-  b.shape = s;
-  rigid::setMass(b, mass);
-  return b;
-}
+using rigid::test::bodyOf;
 
 rigid::Medium fluid(double density, double viscosity, const Vec3& mn, const Vec3& mx) {
   rigid::Medium m;
@@ -466,7 +439,7 @@ const Vec3 kG(0.0, 0.0, -9.81);
 
 TEST(Buoyancy, IsTheWeightOfTheDisplacedFluidAtTheCentreOfBuoyancy) {
   const double rho = 998.2, r = 0.1;
-  const auto b = makeBody(sphere(r), 1.0);
+  const auto b = bodyOf(sphere(r), 1.0);
   const rigid::Medium water = fluid(rho, 0.0, lowCorner(), highCorner(0.0));
   for (double h : {0.0, 0.03, 0.1, 0.17, 0.2}) {
     const Vec3 X(0, 0, r - h);  // cap of height h below the surface z = 0
@@ -493,7 +466,7 @@ TEST(Buoyancy, TiltedFloatingBoxFeelsTheWallSidedRightingMoment) {
   // BM = B^2 / (12 T) (valid while neither the deck edge dips nor the bilge emerges:
   // tan(theta) B/2 < T).
   const double rho = 1000.0, g = 9.81, B = 1.0, T = 0.25;
-  const auto b = makeBody(box(1.0, B, 0.5), 250.0);
+  const auto b = bodyOf(box(1.0, B, 0.5), 250.0);
   const rigid::Medium water = fluid(rho, 0.0, lowCorner(), highCorner(0.0));
   const double V = B * 1.0 * T, BM = B * B / (12.0 * T), GM = T / 2 + BM - 0.25;
   for (double deg : {2.0, 10.0, 20.0, 25.0}) {
@@ -534,7 +507,7 @@ TEST(Drag, ProjectedAreasObeyCauchysFormula) {
 
 TEST(Drag, SphereInAViscousFluidFeelsStokesDrag) {
   const double mu = 0.37, r = 0.12;
-  const auto b = makeBody(sphere(r), 2.0);
+  const auto b = bodyOf(sphere(r), 2.0);
   const rigid::Medium syrup = fluid(0.0, mu, lowCorner(), highCorner(kBig));
   const Vec3 V(0.3, -1.2, 2.5), w(1.5, -0.5, 4.0);
   const Load L = mediumLoad(syrup, b, Vec3(0, 0, 1), Quat::Identity(), V, w, kG);
@@ -545,7 +518,7 @@ TEST(Drag, SphereInAViscousFluidFeelsStokesDrag) {
 
 TEST(Drag, SphereInADenseFluidFeelsQuadraticDrag) {
   const double rho = 998.2, r = 0.05;
-  const auto b = makeBody(sphere(r), 2.0);
+  const auto b = bodyOf(sphere(r), 2.0);
   const rigid::Medium water = fluid(rho, 0.0, lowCorner(), highCorner(kBig));
   const Vec3 V(0.3, -1.2, 2.5);
   const Load L = mediumLoad(water, b, Vec3(0, 0, 1), Quat::Identity(), V, Vec3::Zero(),
@@ -556,7 +529,7 @@ TEST(Drag, SphereInADenseFluidFeelsQuadraticDrag) {
 
 TEST(Drag, BoxQuadraticDragUsesItsProjectedArea) {
   const double rho = 1000.0;
-  const auto b = makeBody(box(0.2, 0.4, 0.8), 5.0);
+  const auto b = bodyOf(box(0.2, 0.4, 0.8), 5.0);
   const rigid::Medium water = fluid(rho, 0.0, lowCorner(), highCorner(kBig));
   const Quat q(Eigen::AngleAxisd(0.6, Vec3(1, 2, 3).normalized()));
   const Mat3 R = q.toRotationMatrix();
@@ -575,7 +548,7 @@ TEST(Drag, BoxAngularPressureDragIsTheFlatStripIntegral) {
   // axis moving at omega s, pushes back 1/2 rho Cd (omega s)^2 dA with lever |s|. Summed
   // here on a grid over the four faces.
   const double rho = 1000.0, lx = 0.3, ly = 0.5, lz = 0.7, w = 3.0;
-  const auto b = makeBody(box(lx, ly, lz), 40.0);
+  const auto b = bodyOf(box(lx, ly, lz), 40.0);
   const rigid::Medium water = fluid(rho, 0.0, lowCorner(), highCorner(kBig));
   const int n = 20000;
   double T = 0.0;
@@ -596,7 +569,7 @@ TEST(Drag, BoxAngularPressureDragIsTheFlatStripIntegral) {
 
 TEST(Drag, OnlyTheSubmergedFractionFeelsDragAtTheCentreOfBuoyancy) {
   const double mu = 0.5, r = 0.2;
-  const auto b = makeBody(sphere(r), 1.0);
+  const auto b = bodyOf(sphere(r), 1.0);
   const rigid::Medium syrup = fluid(0.0, mu, lowCorner(), highCorner(0.0));
   const Vec3 V(1.0, 0.0, 0.0);
   // Centre on the surface: half the ball is in; its centroid is 3r/8 below the centre.
@@ -618,7 +591,7 @@ TEST(Drag, NeverGivesEnergy) {
   const rigid::Medium m = fluid(998.2, 1e-3, lowCorner(), highCorner(0.0));
   int n = 0;
   for (const Shape& s : {sphere(0.2), box(0.2, 0.4, 0.6), cylinder(0.1, 0.5), capsule(0.1, 0.3)}) {
-    const auto b = makeBody(s, 3.0);
+    const auto b = bodyOf(s, 3.0);
     for (int i = 0; i < 40; ++i) {
       const Quat q(Eigen::AngleAxisd(0.3 * i, Vec3(std::sin(i), std::cos(2.0 * i), 0.3)));
       const Vec3 X(0.0, 0.0, 0.02 * (i - 20));

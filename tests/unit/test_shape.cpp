@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "body.h"
+#include "builders.h"
 #include "shape.h"
 
 namespace {
@@ -16,32 +17,10 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kRel = 1e-13;  // closed forms: only rounding differs
 
-rigid::Shape sphere(double r) {
-  rigid::Shape s;
-  s.type = rigid::ShapeType::Sphere;
-  s.radius = r;
-  return s;
-}
-rigid::Shape box(double lx, double ly, double lz) {
-  rigid::Shape s;
-  s.type = rigid::ShapeType::Box;
-  s.size = rigid::Vec3(lx, ly, lz);
-  return s;
-}
-rigid::Shape cylinder(double r, double l) {
-  rigid::Shape s;
-  s.type = rigid::ShapeType::Cylinder;
-  s.radius = r;
-  s.length = l;
-  return s;
-}
-rigid::Shape capsule(double r, double l) {
-  rigid::Shape s;
-  s.type = rigid::ShapeType::Capsule;
-  s.radius = r;
-  s.length = l;
-  return s;
-}
+using rigid::test::box;
+using rigid::test::capsule;
+using rigid::test::cylinder;
+using rigid::test::sphere;
 
 void expectRelNear(double expected, double actual, double rel, const char* what) {
   EXPECT_NEAR(actual, expected, rel * std::abs(expected)) << what;

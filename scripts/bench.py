@@ -36,6 +36,7 @@ import tempfile
 import time
 
 import numpy as np
+from rigidfmu import driver
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import bench_scenes  # noqa: E402
@@ -223,26 +224,14 @@ def build_fmus(build, scenes, names, folder):
     return out
 
 
-class Slave:
-    """One instance of an FMU, initialised with the given Real parameters."""
+class Slave(driver.Slave):
+    """One instance of an FMU (rigidfmu.driver), initialised with the given Real parameters."""
 
     def __init__(self, fmu, folder, params=None):
-        from fmpy import extract, read_model_description
-        from fmpy.fmi2 import FMU2Slave
-        self.md = read_model_description(str(fmu))
-        self.vars = {v.name: v for v in self.md.modelVariables}
-        self.dir = extract(str(fmu), unzipdir=tempfile.mkdtemp(prefix="bench-", dir=folder))
-        self.slave = FMU2Slave(guid=self.md.guid, unzipDirectory=self.dir,
-                               modelIdentifier=self.md.coSimulation.modelIdentifier, instanceName="bench")
-        self.slave.instantiate(loggingOn=False)
-        self.slave.setupExperiment(startTime=0.0)
-        if params:
-            self.slave.setReal([self.vars[k].valueReference for k in params], list(params.values()))
-        self.slave.enterInitializationMode()
-        self.slave.exitInitializationMode()
+        super().__init__(fmu, "bench", folder=folder, prefix="bench-", recorder=False)
+        self.initialize(params)
         self.t = 0.0
-        self.real_outputs = [v.valueReference for v in self.md.modelVariables
-                             if v.causality == "output" and v.type == "Real"]
+        self.real_outputs = [v.valueReference for v in self.model.real_outputs()]
 
     def steps(self, h, n):
         """n calls of fmi2DoStep(h); the CPU seconds they took. Time is t0 + k h, never
@@ -257,7 +246,7 @@ class Slave:
 
     def close(self):
         self.slave.terminate()
-        self.slave.freeInstance()
+        self.free()
 
 
 def median_per_call(fn, calls, repeats):

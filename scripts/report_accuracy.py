@@ -37,6 +37,7 @@ import tempfile
 import time
 
 import numpy as np
+from rigidfmu import driver
 from rigidfmu.references.heave import heave  # noqa: E402
 from fmu_build import ensure_core, package  # noqa: E402
 from rigidfmu.references.torque_free import torque_free_reference  # noqa: E402
@@ -314,25 +315,17 @@ def problems():
 # ----------------------------------------------------------------------------------
 # running an FMU (built by fmu_build.py)
 
-class Model:
+class Model(driver.Fmu):
     """One FMU: its methods (from the modelDescription), its variables, one extracted copy."""
 
     def __init__(self, fmu, folder):
-        from fmpy import extract, read_model_description
-        self.fmu = str(fmu)
-        self.md = read_model_description(self.fmu)
-        self.dir = extract(self.fmu, unzipdir=tempfile.mkdtemp(prefix="acc-", dir=folder))
-        self.vars = {v.name: v for v in self.md.modelVariables}
-        self.methods = []  # (name, value, description)
-        for t in self.md.typeDefinitions:
-            if t.name == "SolverMethod":
-                self.methods = [(i.name, int(i.value), i.description or "") for i in t.items]
+        super().__init__(fmu, folder=folder, prefix="acc-")
+        self.methods = self.methods()  # (name, value, description)
         if not self.methods:
             raise SystemExit("report_accuracy: no Enumeration SolverMethod in the modelDescription")
         self.has_tolerance = "solver.tolerance" in self.vars
         self.steps_var = self.vars.get("solver.steps")
-        self.outputs = [v for v in self.md.modelVariables
-                        if v.causality == "output" and v.type == "Real"]
+        self.outputs = self.real_outputs()
 
     def is_adaptive(self, name, description):
         return self.has_tolerance and (name in ADAPTIVE_NAMES or "adaptive" in description.lower())
@@ -341,30 +334,23 @@ class Model:
         """(outputs at T, median wall seconds per simulated second or None, internal steps
         or None, failure message or None). One instance; an untimed run reads the outputs
         (and solver.steps after every communication step), then `runs` timed runs."""
-        from fmpy.fmi2 import FMU2Slave
-        slave = FMU2Slave(guid=self.md.guid, unzipDirectory=self.dir,
-                          modelIdentifier=self.md.coSimulation.modelIdentifier,
-                          instanceName="accuracy")
-        slave.instantiate(loggingOn=False)
+        # fmpy's own logger (recorder=False): it prints what the FMU says
+        instance = driver.Slave(self, "accuracy", recorder=False)
+        slave = instance.slave
         n_comm = max(1, round(T / comm))
         H = T / n_comm
-        reals, ints = {}, {self.vars["solver.method"].valueReference: method_value}
+        values = {"solver.method": method_value}
         if step is not None:
-            reals[self.vars["solver.step"].valueReference] = step
+            values["solver.step"] = step
         if tolerance is not None and self.has_tolerance:
-            reals[self.vars["solver.tolerance"].valueReference] = tolerance
+            values["solver.tolerance"] = tolerance
         if "solver.energyGainLimit" in self.vars:
             # This report measures each method's error, so the energy audit (which
             # refuses explicit Euler's energy gain on a free rotation) is off here.
-            reals[self.vars["solver.energyGainLimit"].valueReference] = 0.0
+            values["solver.energyGainLimit"] = 0.0
 
         def start():
-            slave.setupExperiment(startTime=0.0)
-            if reals:
-                slave.setReal(list(reals), list(reals.values()))
-            slave.setInteger(list(ints), list(ints.values()))
-            slave.enterInitializationMode()
-            slave.exitInitializationMode()
+            instance.initialize(values)
 
         outputs, internal, times, failure = None, None, [], None
         try:
@@ -378,8 +364,7 @@ class Model:
                     total += (slave.getInteger(vr)[0] if self.steps_var.type == "Integer"
                               else slave.getReal(vr)[0])
             internal = int(total) if count else None
-            vrs = [v.valueReference for v in self.outputs]
-            outputs = dict(zip([v.name for v in self.outputs], slave.getReal(vrs)))
+            outputs = instance.get_values([v.name for v in self.outputs])
             for _ in range(runs):
                 slave.terminate()
                 slave.reset()
@@ -392,7 +377,7 @@ class Model:
             failure = f"{type(exc).__name__}: {exc}"
         finally:
             try:
-                slave.freeInstance()
+                instance.free()
             except Exception:
                 pass
         return outputs, (statistics.median(times) if times else None), internal, failure

@@ -33,7 +33,6 @@ usage:
 
 Exit status 1 when any run FAILS, 0 otherwise."""
 import argparse
-import ctypes
 import json
 import math
 import os
@@ -48,6 +47,7 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
+from rigidfmu import driver
 from rigidfmu.references.heave import heave  # noqa: E402
 from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle  # noqa: E402
 from fmu_build import ensure_core, package  # noqa: E402
@@ -57,7 +57,6 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 G = 9.81
 RHO_WATER, MU_WATER = 998.2, 1.002e-3  # the "water" type (README)
 
-STATUS = {0: "OK", 1: "Warning", 2: "Discard", 3: "Error", 4: "Fatal", 5: "Pending"}
 OUTCOMES = ("holds", "sub-stepped", "refused", "FAILS")
 
 # Methods known to integrate a constant force exactly (error = rounding): the
@@ -128,69 +127,40 @@ def spinner_scene(name, inertia, omega, step=1e-3):
 
 
 # ----------------------------------------------------------------------------------
-# loading FMUs (built by fmu_build.py)
+# loading FMUs (built by fmu_build.py) and running them (rigidfmu.driver)
 
-_libc = ctypes.CDLL(None)
-_libc.calloc.restype = ctypes.c_void_p
-_libc.calloc.argtypes = [ctypes.c_size_t, ctypes.c_size_t]
-_libc.free.argtypes = [ctypes.c_void_p]
-
-
-class Recorder:
-    """FMI callbacks whose logger keeps the first messages of each status and every
-    message about sub-steps (capped), so that a chatty FMU costs no memory."""
+class Recorder(driver.Recorder):
+    """The driver's logger keeping the first `cap` messages, and besides them the first
+    `cap` failure messages and every message about sub-steps (counted, the first `cap`
+    kept), so that a chatty FMU costs no memory."""
 
     SUBSTEP = re.compile(r"sub-?step|substep", re.I)
 
     def __init__(self, cap=50):
-        from fmpy.fmi2 import (fmi2CallbackFunctions, fmi2CallbackLoggerTYPE,
-                               fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE)
-        self.cap = cap
-        self.counts = {}
-        self.messages = []     # (status, category, message), first `cap`
+        super().__init__(cap)
         self.substeps = []     # sub-step messages, first `cap`
         self.substep_count = 0
         self.failures = []     # Discard / Error / Fatal messages, first `cap`
 
-        def log(env, instance, status, category, message):
-            st = STATUS.get(status, str(status))
-            cat = category.decode(errors="replace") if category else ""
-            msg = message.decode(errors="replace").replace("%%", "%") if message else ""
-            self.counts[st] = self.counts.get(st, 0) + 1
-            if len(self.messages) < cap:
-                self.messages.append((st, cat, msg))
-            if st in ("Discard", "Error", "Fatal") and len(self.failures) < cap:
-                self.failures.append(msg)
-            if st == "Warning" or (cat == "logEvents" and self.SUBSTEP.search(msg)):
-                self.substep_count += 1
-                if len(self.substeps) < cap:
-                    self.substeps.append(f"[{st}] {cat}: {msg}")
-
-        self.callbacks = fmi2CallbackFunctions()
-        self.callbacks.logger = fmi2CallbackLoggerTYPE(log)
-        self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(_libc.calloc)
-        self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(_libc.free)
+    def note(self, st, cat, msg):
+        super().note(st, cat, msg)
+        if st in driver.FAILED and len(self.failures) < self.cap:
+            self.failures.append(msg)
+        if st == "Warning" or (cat == "logEvents" and self.SUBSTEP.search(msg)):
+            self.substep_count += 1
+            if len(self.substeps) < self.cap:
+                self.substeps.append(f"[{st}] {cat}: {msg}")
 
 
-class Model:
+class Model(driver.Fmu):
     """One FMU: its methods, variables and one extracted copy."""
 
     def __init__(self, fmu, folder):
-        from fmpy import extract, read_model_description
-        self.fmu = str(fmu)
-        self.md = read_model_description(self.fmu)
-        self.dir = extract(self.fmu, unzipdir=tempfile.mkdtemp(prefix="stress-", dir=folder))
-        self.vars = {v.name: v for v in self.md.modelVariables}
-        self.methods = []
-        for t in self.md.typeDefinitions:
-            if t.name == "SolverMethod":
-                self.methods = [(i.name, int(i.value), i.description or "") for i in t.items]
-        self.outputs = [v.name for v in self.md.modelVariables
-                        if v.causality == "output" and v.type == "Real"]
-        self.output_vrs = [self.vars[n].valueReference for n in self.outputs]
+        super().__init__(fmu, folder=folder, prefix="stress-")
+        self.methods = self.methods()
+        self.outputs = [v.name for v in self.real_outputs()]
         self.steps_var = self.vars.get("solver.steps")
-        self.categories = [c if isinstance(c, str) else getattr(c, "name", str(c))
-                           for c in (self.md.logCategories or [])]
+        self.categories = self.log_categories()
 
 
 def discover_methods(build, folder):
@@ -204,14 +174,12 @@ def discover_methods(build, folder):
 # ----------------------------------------------------------------------------------
 # one run
 
-class Trace:
+class Trace(driver.Trace):
     """What one run produced: outputs at every communication point reached with
     fmi2OK (row 0: after initialisation), the status of the last call and its message."""
 
     def __init__(self, names):
-        self.names = names
-        self.index = {n: i for i, n in enumerate(names)}
-        self.times, self.rows = [], []
+        super().__init__(names)
         self.status = "OK"
         self.message = ""
         self.failed_call = ""
@@ -228,16 +196,6 @@ class Trace:
         self.wall = 0.0
         self.extra = {}
 
-    def finish(self):
-        self.t = np.array(self.times)
-        self.data = np.array(self.rows) if self.rows else np.zeros((0, len(self.names)))
-
-    def col(self, name):
-        return self.data[:, self.index[name]]
-
-    def vec(self, prefix, n=3):
-        return np.column_stack([self.col(f"{prefix}[{i}]") for i in range(1, n + 1)])
-
     @property
     def complete(self):
         return self.status == "OK"
@@ -248,11 +206,10 @@ def run_fmu(model, method_value, T, H, start=None, master=None, stop=None, label
     master(t, outputs dict) -> {input name: value} is called before every step;
     stop(trace) -> True ends the run early (after a step)."""
     from fmpy.fmi1 import FMICallException
-    from fmpy.fmi2 import FMU2Slave, fmi2LastSuccessfulTime, fmi2Terminated
+    from fmpy.fmi2 import fmi2LastSuccessfulTime, fmi2Terminated
     rec = Recorder()
-    slave = FMU2Slave(guid=model.md.guid, unzipDirectory=model.dir,
-                      modelIdentifier=model.md.coSimulation.modelIdentifier, instanceName=label)
-    slave.instantiate(callbacks=rec.callbacks, loggingOn=True)
+    instance = driver.Slave(model, label, recorder=rec, logging_on=True)
+    slave = instance.slave
     tr = Trace(model.outputs)
     if "logEvents" in model.categories:
         slave.setDebugLogging(True, ["logEvents"])
@@ -264,27 +221,15 @@ def run_fmu(model, method_value, T, H, start=None, master=None, stop=None, label
     n = max(1, int(math.ceil(T / H - 1e-9)))
 
     def read(t):
-        vals = slave.getReal(model.output_vrs)
-        arr = np.array(vals, dtype=float)
+        arr = tr.sample(instance, t)
         if tr.nonfinite is None and not np.all(np.isfinite(arr)):
             bad = model.outputs[int(np.argmin(np.isfinite(arr)))]
             tr.nonfinite = (t, bad)
-        tr.times.append(t)
-        tr.rows.append(arr)
         return arr
 
     call = "setup"
     try:
-        slave.setupExperiment(startTime=0.0)
-        values = {"solver.method": method_value}
-        values.update(start or {})
-        reals = {model.vars[k].valueReference: float(v) for k, v in values.items() if model.vars[k].type == "Real"}
-        ints = {model.vars[k].valueReference: int(v) for k, v in values.items() if model.vars[k].type != "Real"}
-        if reals:
-            slave.setReal(list(reals), list(reals.values()))
-        slave.setInteger(list(ints), list(ints.values()))
-        slave.enterInitializationMode()
-        slave.exitInitializationMode()
+        instance.initialize(dict({"solver.method": method_value}, **(start or {})))
         read(0.0)
         t0 = time.perf_counter()
         for k in range(n):
@@ -292,11 +237,9 @@ def run_fmu(model, method_value, T, H, start=None, master=None, stop=None, label
             h = min(H, T - t) if k == n - 1 else H
             if master is not None:
                 call = f"fmi2SetReal (master's inputs at t = {t:g} s)"
-                inputs = master(t, dict(zip(model.outputs, tr.rows[-1])))
-                names = list(inputs)
-                slave.setReal([model.vars[x].valueReference for x in names], [float(inputs[x]) for x in names])
+                instance.set_values(master(t, dict(zip(model.outputs, tr.rows[-1]))))
             call = f"fmi2DoStep({t:g}, {h:g})"
-            slave.doStep(t, h)
+            instance.step(h, t)
             tr.nominal += max(1, int(math.ceil(h / step - 1e-9)))
             if steps_vr:
                 tr.steps += slave.getInteger(steps_vr)[0]
@@ -306,7 +249,7 @@ def run_fmu(model, method_value, T, H, start=None, master=None, stop=None, label
         tr.wall = time.perf_counter() - t0
     except FMICallException as e:
         tr.wall = time.perf_counter() - t0 if "t0" in locals() else 0.0
-        tr.status = STATUS.get(e.status, str(e.status))
+        tr.status = driver.status_name(e.status)
         tr.failed_call = call
         tr.message = rec.failures[-1] if rec.failures else ""
         try:
@@ -318,13 +261,13 @@ def run_fmu(model, method_value, T, H, start=None, master=None, stop=None, label
         except Exception:
             tr.last_successful = None
         try:
-            after = np.array(slave.getReal(model.output_vrs), dtype=float)
+            after = np.array(instance.get(*model.outputs), dtype=float)
             tr.after_failure_finite = bool(np.all(np.isfinite(after)))
         except Exception:
             tr.after_failure_finite = None
     finally:
         try:
-            slave.freeInstance()
+            instance.free()
         except Exception:
             pass
     tr.substep_messages = rec.substeps

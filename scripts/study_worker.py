@@ -5,7 +5,6 @@ instance for every further run through fmi2Reset, which gives bitwise the output
 fresh instance. A run that the FMU refuses (fmi2Discard, fmi2Error, fmi2Fatal) is a
 result with its status and the FMU's own message, never an exception of the batch.
 """
-import ctypes
 import pathlib
 import shutil
 import socket
@@ -14,53 +13,39 @@ import threading
 import time
 
 import numpy as np
-from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
-                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
 
 import study_metrics
+from rigidfmu.driver import Fmu, Slave, Trace, status_name
 
-STATUS = {0: "ok", 1: "warning", 2: "discard", 3: "error", 4: "fatal", 5: "pending"}
-_libc = ctypes.CDLL(None)
-_libc.calloc.restype = ctypes.c_void_p
-_libc.calloc.argtypes = [ctypes.c_size_t, ctypes.c_size_t]
-_libc.free.argtypes = [ctypes.c_void_p]
 _local = threading.local()  # per worker thread: FMU content hash -> LoadedFmu
 
 
 class LoadedFmu:
-    """One FMU unpacked and instantiated, with a logger that keeps its messages."""
+    """One FMU unpacked and instantiated (rigidfmu.driver), with a logger that keeps
+    its messages."""
 
     def __init__(self, fmu_bytes: bytes):
         self.dir = pathlib.Path(tempfile.mkdtemp(prefix="rigidfmu-study-", dir=_scratch()))
         path = self.dir / "model.fmu"
         path.write_bytes(fmu_bytes)
-        self.md = read_model_description(str(path))
-        self.unzipped = extract(str(path), unzipdir=str(self.dir / "unzipped"))
-        self.vars = {v.name: v for v in self.md.modelVariables}
-        self.messages = []
-
-        def log(env, instance, status, category, message):
-            # the FMU's messages are printf formats: its '%' come doubled
-            self.messages.append(f"[{STATUS.get(status, status)}] {message.decode().replace('%%', '%')}")
-
-        self.callbacks = fmi2CallbackFunctions()  # kept: the FMU calls into it
-        self.callbacks.logger = fmi2CallbackLoggerTYPE(log)
-        self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(_libc.calloc)
-        self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(_libc.free)
-        self.slave = None
+        self.model = Fmu(path, folder=self.dir)
+        self.vars = self.model.vars
+        self.instance = None
         self.used = False
         self._instantiate()
 
     def _instantiate(self):
-        if self.slave is not None:
-            self.slave.freeInstance()
-        self.slave = FMU2Slave(guid=self.md.guid, unzipDirectory=self.unzipped,
-                               modelIdentifier=self.md.coSimulation.modelIdentifier,
-                               instanceName="study")
-        self.slave.instantiate(callbacks=self.callbacks, loggingOn=False)
+        if self.instance is not None:
+            self.instance.free()
+        self.instance = Slave(self.model, "study")
+        self.slave = self.instance.slave
         self.used = False
+
+    @property
+    def messages(self):
+        """The FMU's messages since the run began, '[status] message'."""
+        return [f"[{status.lower()}] {message}" for status, _, message in self.instance.log.messages]
 
     def ready(self):
         """The instance as just instantiated: reset when it has run before."""
@@ -70,15 +55,12 @@ class LoadedFmu:
             except FMICallException:
                 self._instantiate()  # a reset refused: start from a fresh instance
         self.used = True
-        self.messages.clear()
+        self.instance.log.clear()
 
     def set_values(self, values: dict):
+        """One value a call, in the order given: a refused value names itself."""
         for name, value in values.items():
-            v = self.vars[name]
-            if v.type == "Real":
-                self.slave.setReal([v.valueReference], [float(value)])
-            else:  # Integer and Enumeration
-                self.slave.setInteger([v.valueReference], [int(value)])
+            self.instance.set_values({name: value})
 
 
 def _scratch():
@@ -118,19 +100,8 @@ def run_one(fmu: LoadedFmu, run: dict, experiment: dict, record: dict) -> dict:
     each communication step, the recorded outputs at every communication point."""
     started = time.perf_counter()
     h, steps = experiment["stepSize"], experiment["steps"]
-    names = record["variables"]
-    reals = [n for n in names if fmu.vars[n].type == "Real"]
-    ints = [n for n in names if fmu.vars[n].type != "Real"]
-    real_vrs = [fmu.vars[n].valueReference for n in reals]
-    int_vrs = [fmu.vars[n].valueReference for n in ints]
-    series = {n: np.full(steps + 1, np.nan) for n in names}
+    trace = Trace(record["variables"])
     times = np.arange(steps + 1) * h  # t_k = k h, never accumulated
-
-    def sample(k):
-        for n, value in zip(reals, fmu.slave.getReal(real_vrs) if reals else []):
-            series[n][k] = value
-        for n, value in zip(ints, fmu.slave.getInteger(int_vrs) if ints else []):
-            series[n][k] = value
 
     fmu.ready()
     status, reason, reached = "ok", "", 0
@@ -139,20 +110,22 @@ def run_one(fmu: LoadedFmu, run: dict, experiment: dict, record: dict) -> dict:
         fmu.set_values(run["parameters"])
         fmu.slave.enterInitializationMode()
         fmu.slave.exitInitializationMode()
-        sample(0)
+        trace.sample(fmu.instance, times[0])
         for k in range(steps):
             if run["inputs"]:
                 fmu.set_values({n: input_value(s, times[k]) for n, s in run["inputs"].items()})
             fmu.slave.doStep(times[k], h)
-            sample(k + 1)
+            trace.sample(fmu.instance, times[k + 1])
             reached = k + 1
     except FMICallException as e:
-        status = STATUS.get(e.status, str(e.status))
+        status = status_name(e.status).lower()
         said = "; ".join(m for m in fmu.messages if not m.startswith("[ok]"))
         reason = f"{e.function} returned {status} at t = {float(times[reached])!r}: {said or 'no message'}"
     except Exception as e:  # noqa: BLE001 -- a bug of this runner is the run's result too
         status, reason = "exception", f"{type(e).__name__}: {e}"
         fmu._instantiate()
+    trace.finish()
+    series = {n: trace.col(n) for n in trace.names}
     row = {"run_id": run["run_id"], "status": status, "reason": reason,
            "end_time": float(times[reached]), "worker": _worker_name(),
            "seconds": time.perf_counter() - started}
@@ -184,7 +157,7 @@ def unload_all():
     """Frees this thread's instances and their unpacked files."""
     for fmu in getattr(_local, "fmus", {}).values():
         try:
-            fmu.slave.freeInstance()
+            fmu.instance.free()
         finally:
             shutil.rmtree(fmu.dir, ignore_errors=True)
     _local.fmus = {}

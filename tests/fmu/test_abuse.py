@@ -26,10 +26,10 @@ import numpy as np
 import pytest
 from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import (FMU2Slave, fmi2CallbackLoggerTYPE, fmi2Boolean, fmi2Byte, fmi2FMUstate, fmi2Integer, fmi2Real,
-                       fmi2String, fmi2ValueReference)
+from fmpy.fmi2 import (fmi2Boolean, fmi2Byte, fmi2FMUstate, fmi2Integer, fmi2Real, fmi2String,
+                       fmi2ValueReference)
 
-from harness import STATUS, Recorder, Slave
+from rigidfmu.driver import STATUS, Recorder, Slave, load_library
 
 TESTS = pathlib.Path(__file__).resolve().parent
 ROOT = TESTS.parents[1]
@@ -94,27 +94,6 @@ NORMAL_STEP = 0.01
 NORMAL_STEPS = 10
 
 
-class TolerantRecorder(Recorder):
-    """The harness Recorder, but a message that is not UTF-8 (a corrupt state's bytes
-    quoted in it) is kept with replacement characters instead of being lost to a
-    UnicodeDecodeError inside the ctypes callback."""
-
-    def __init__(self):
-        super().__init__()
-        self.not_utf8 = []
-
-        def log(env, instance, status, category, message):
-            try:
-                text = message.decode()
-            except UnicodeDecodeError:
-                text = message.decode(errors="replace")
-                self.not_utf8.append(text)
-            self.messages.append((STATUS.get(status, status), category.decode(errors="replace"),
-                                  text.replace("%%", "%")))
-
-        self.callbacks.logger = fmi2CallbackLoggerTYPE(log)
-
-
 class Violation(Exception):
     pass
 
@@ -147,9 +126,11 @@ class Fuzzer:
     # ---- instances -------------------------------------------------------------------
 
     def new_slave(self, name):
-        log = TolerantRecorder()
-        s = FMU2Slave(guid=self.md.guid, unzipDirectory=self.dir,
-                      modelIdentifier=self.md.coSimulation.modelIdentifier, instanceName=name)
+        # the driver's Recorder keeps a message that is not UTF-8 (a corrupt state's bytes
+        # quoted in it) with replacement characters, instead of losing it to a
+        # UnicodeDecodeError inside the ctypes callback
+        log = Recorder()
+        s = load_library(self.md, self.dir, name)
         s.instantiate(callbacks=log.callbacks, loggingOn=False)
         s.rec = log
         return s

@@ -39,7 +39,7 @@ import numpy as np
 from rigidfmu import driver
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-import bench_scenes  # noqa: E402
+from rigidfmu.scenes import bench as bench_scenes  # noqa: E402
 from rigidfmu.references.quaternion import rotation_angle  # noqa: E402
 from report_accuracy import cpu_name  # noqa: E402
 from rigidfmu.references.torque_free import torque_free_reference  # noqa: E402

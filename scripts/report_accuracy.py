@@ -38,13 +38,13 @@ import time
 
 import numpy as np
 from rigidfmu import driver
+from rigidfmu.scenes import G, body, free_spin, scene
 from rigidfmu.references.heave import heave  # noqa: E402
 from fmu_build import ensure_core, package  # noqa: E402
 from rigidfmu.references.torque_free import torque_free_reference  # noqa: E402
 from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-G = 9.81
 
 # Expected orders of the methods this script knows (error vs step; the adaptive method's
 # error vs tolerance is expected near 1) and the tolerance on the measured slope.
@@ -101,19 +101,6 @@ def bounce_height(t, h0, e):
 # ----------------------------------------------------------------------------------
 # reference problems: a scene, an end time, a reference and an error measure
 
-def body(name, shape, mass, **fields):
-    b = {"name": name, "shape": shape, "mass": mass}
-    b.update(fields)
-    return b
-
-
-def scene(name, bodies, gravity=(0.0, 0.0, -G), **extra):
-    s = {"name": name, "gravity": list(gravity), "solver": {"method": "rk4", "step": 1e-3},
-         "bodies": bodies}
-    s.update(extra)
-    return s
-
-
 def vec(out, prefix, n=3):
     return np.array([out[f"{prefix}[{i}]"] for i in range(1, n + 1)])
 
@@ -141,10 +128,7 @@ class Problem:
 def spin_problem(name, inertia, omega0):
     """A torque-free body with principal inertia diag(inertia), identity orientation (so
     world and body frames coincide at t = 0), no gravity."""
-    I = [[inertia[0], 0, 0], [0, inertia[1], 0], [0, 0, inertia[2]]]
-    return scene(name, [body("spinner", {"type": "box", "size": [0.3, 0.2, 0.1]}, 1.0,
-                             inertia=I, angularVelocity=list(omega0),
-                             outputs=["orientation"], inputs=[])], gravity=(0, 0, 0))
+    return free_spin(inertia, omega0, name=name, outputs=["orientation"], inputs=[])
 
 
 def problems():

@@ -48,13 +48,13 @@ from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 from rigidfmu import driver
+from rigidfmu.scenes import G, body, free_spin, scene
 from rigidfmu.references.heave import heave  # noqa: E402
 from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle  # noqa: E402
 from fmu_build import ensure_core, package  # noqa: E402
 from rigidfmu.references.torque_free import torque_free_reference  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-G = 9.81
 RHO_WATER, MU_WATER = 998.2, 1.002e-3  # the "water" type (README)
 
 OUTCOMES = ("holds", "sub-stepped", "refused", "FAILS")
@@ -103,27 +103,8 @@ def heave_dop853(m, size, z0, T, times):
 # ----------------------------------------------------------------------------------
 # scenes
 
-def body(name, shape, mass, **fields):
-    b = {"name": name, "shape": shape, "mass": mass}
-    b.update(fields)
-    return b
-
-
-def scene(name, bodies, gravity=(0.0, 0.0, -G), step=1e-3, **extra):
-    s = {"name": name, "gravity": list(gravity), "solver": {"method": "rk4", "step": step},
-         "bodies": bodies}
-    s.update(extra)
-    return s
-
-
-def diag(I):
-    return [[I[0], 0, 0], [0, I[1], 0], [0, 0, I[2]]]
-
-
 def spinner_scene(name, inertia, omega, step=1e-3):
-    return scene(name, [body("b", {"type": "box", "size": [0.3, 0.2, 0.1]}, 1.0,
-                             inertia=diag(inertia), angularVelocity=list(omega))],
-                 gravity=(0, 0, 0), step=step)
+    return free_spin(inertia, omega, step=step, name=name, body_name="b")
 
 
 # ----------------------------------------------------------------------------------

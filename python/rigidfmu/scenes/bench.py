@@ -1,0 +1,92 @@
+"""The benchmark scenes, written once as scene files so that our core benchmark
+(bench/bench_core.cpp), the FMU benchmark and MuJoCo (rigidfmu.reports.bench_peers) run the
+very same bodies: free tumbling bodies, and piles of cubes falling on a floor. The
+piles are written twice, the second naming the contact solver ("manifold", the
+default), for the benchmarks that time them over 1 s (BM_Pile) and 3 s
+(BM_PileManifold).
+
+  python -m rigidfmu.scenes.bench DIR    writes DIR/free_<N>.json, DIR/pile_<N>.json and
+                                         DIR/pile_manifold_<N>.json
+"""
+import json
+import math
+import pathlib
+import sys
+
+from rigidfmu.scenes import body, diag, floor, scene
+
+FREE_COUNTS = (1, 10, 100, 1000, 10000)
+PILE_COUNTS = (10, 100, 1000)
+PILE_STEP = 2e-3   # s: MuJoCo's default timestep, the issue's figures' dt
+EDGE = 0.1         # m, cube edge
+GAP = 0.02         # m, between neighbouring cubes at the start
+FREE_INERTIA = (1.0, 2.0, 3.0)  # kg m^2: asymmetric, so the bodies really tumble
+
+
+def free_scene(n):
+    """n torque-free tumbling bodies (no gravity, no collisions), each with its own spin."""
+    bodies = []
+    for i in range(n):
+        a = 2 * math.pi * i / max(n, 1)
+        bodies.append(body(
+            f"b{i}", {"type": "box", "size": [0.3, 0.2, 0.1]}, 1.0, inertia=diag(FREE_INERTIA),
+            position=[3.0 * (i % 100), 3.0 * (i // 100), 0.0],
+            angularVelocity=[0.4 + 0.1 * math.cos(a), 0.3, 3.0 + 0.1 * math.sin(a)],
+            collision=False, outputs=["position", "orientation"], inputs=[]))
+    return scene(f"Free{n}", bodies, gravity=(0, 0, 0))
+
+
+def pile_layout(n):
+    """Columns on a square grid, layers upwards: (x, y, z) of each cube's centre and a
+    small tilt (rad, about x and y) so that cubes land on edges and tumble."""
+    side = max(1, round(n ** (1 / 3)))  # 10 cubes: 2 x 2 columns, 100: 5 x 5, 1000: 10 x 10
+    per_layer = side * side
+    pitch = EDGE + GAP
+    out = []
+    for k in range(n):
+        layer, cell = divmod(k, per_layer)
+        ix, iy = divmod(cell, side)
+        x = (ix - (side - 1) / 2) * pitch
+        y = (iy - (side - 1) / 2) * pitch
+        z = 0.5 * EDGE + GAP + layer * (pitch + GAP)
+        out.append(((x, y, z), (0.05 * math.sin(1.7 * k), 0.05 * math.cos(2.3 * k))))
+    return out
+
+
+def quat_xy(ax, ay):
+    """Quaternion (w, x, y, z) of a turn ax about x followed by ay about y."""
+    cx, sx, cy, sy = math.cos(ax / 2), math.sin(ax / 2), math.cos(ay / 2), math.sin(ay / 2)
+    return [cy * cx, cy * sx, sy * cx, -sy * sx]
+
+
+def pile_scene(n):
+    bodies = []
+    for k, ((x, y, z), (ax, ay)) in enumerate(pile_layout(n)):
+        bodies.append(body(f"c{k}", {"type": "box", "size": [EDGE] * 3}, 1.0,
+                           position=[x, y, z], orientation=quat_xy(ax, ay),
+                           restitution=0.0, staticFriction=0.6, kineticFriction=0.6,
+                           outputs=["position"], inputs=[]))
+    return scene(f"Pile{n}", bodies, step=PILE_STEP, surfaces=[floor(0.6, 0.6, 0.0, half=5.0)])
+
+
+def pile_manifold_scene(n):
+    """pile_scene(n) answered by the manifold contact solver (solver.contacts): only the
+    solver differs, so the two piles' figures compare the solvers and nothing else."""
+    scene = pile_scene(n)
+    scene["name"] = f"PileManifold{n}"
+    scene["solver"] = dict(scene["solver"], contacts="manifold")
+    return scene
+
+
+def write(directory):
+    d = pathlib.Path(directory)
+    d.mkdir(parents=True, exist_ok=True)
+    for n in FREE_COUNTS:
+        (d / f"free_{n}.json").write_text(json.dumps(free_scene(n)))
+    for n in PILE_COUNTS:
+        (d / f"pile_{n}.json").write_text(json.dumps(pile_scene(n)))
+        (d / f"pile_manifold_{n}.json").write_text(json.dumps(pile_manifold_scene(n)))
+
+
+if __name__ == "__main__":
+    write(sys.argv[1] if len(sys.argv) > 1 else "build/bench-scenes")

@@ -1,23 +1,27 @@
-// rigidfmu-describe SCENE.json OUT_DIR
-// Checks a scene and writes OUT_DIR/modelDescription.xml, OUT_DIR/model_identifier
+// rigidfmu-describe SCENE.json OUT_DIR [--fmi 3]
+// Checks a scene and writes OUT_DIR/modelDescription.xml (FMI 2.0, or 3.0 with --fmi 3), OUT_DIR/model_identifier
 // (the scene's name, which names the FMU's binary) and OUT_DIR/modules (the mask of
 // the physics modules the scene needs, src/modules.h). Exit status 1 with the scene's
 // error message on stderr when the scene breaks a rule.
 #include <fstream>
 #include <iostream>
+#include <string>
 
 #include "model_description_xml.h"
 #include "modules.h"
 
 int main(int argc, char** argv) {
-  if (argc != 3) {
-    std::cerr << "usage: " << argv[0] << " SCENE.json OUT_DIR\n";
+  const bool fmi3 = argc == 5 && std::string(argv[3]) == "--fmi" && std::string(argv[4]) == "3";
+  const bool fmi2 = argc == 3 || (argc == 5 && std::string(argv[3]) == "--fmi" && std::string(argv[4]) == "2");
+  if (!fmi2 && !fmi3) {
+    std::cerr << "usage: " << argv[0] << " SCENE.json OUT_DIR [--fmi 2|3]\n";
     return 2;
   }
   try {
     const rigid::Scene scene = rigid::loadSceneFile(argv[1]);
     const std::string dir = argv[2];
-    std::ofstream(dir + "/modelDescription.xml") << rigidfmu::modelDescriptionXml(scene);
+    std::ofstream(dir + "/modelDescription.xml") << rigidfmu::modelDescriptionXml(
+        scene, fmi3 ? rigidfmu::FmiVersion::Fmi3 : rigidfmu::FmiVersion::Fmi2);
     std::ofstream(dir + "/model_identifier") << scene.model.name;
     std::ofstream(dir + "/modules") << rigid::modulesNeeded(scene.model);
     return 0;

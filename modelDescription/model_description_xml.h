@@ -15,6 +15,9 @@ struct LogCategory {
 extern const LogCategory kLogCategories[];
 extern const int kLogCategoryCount;
 
-std::string modelDescriptionXml(const rigid::Scene& scene);
+enum class FmiVersion { Fmi2, Fmi3 };
+
+// The FMI 2.0 or 3.0 model description of the scene's FMU, from one variable table.
+std::string modelDescriptionXml(const rigid::Scene& scene, FmiVersion version = FmiVersion::Fmi2);
 
 }  // namespace rigidfmu

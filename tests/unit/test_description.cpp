@@ -155,6 +155,31 @@ TEST_F(Description, XmlListsEveryVariableWithItsReferenceAndTheGuid) {
         << v.name;
 }
 
+// The FMI 3.0 description from the same table: every variable as a scalar with its FMI 2
+// name, value reference, unit and description, in FMI 3 types; the same token.
+TEST_F(Description, Fmi3XmlHasTheSameVariablesInFmi3Types) {
+  const std::string xml = rigidfmu::modelDescriptionXml(scene, rigidfmu::FmiVersion::Fmi3);
+  EXPECT_TRUE(contains(xml, "fmiVersion=\"3.0\""));
+  EXPECT_TRUE(contains(xml, "instantiationToken=\"" + rigidfmu::sceneGuid(scene) + "\""));
+  EXPECT_FALSE(contains(xml, "ScalarVariable"));
+  for (const Variable& v : vars) {
+    const char* element = v.type == rigidfmu::BaseType::Enumeration ? "<Enumeration"
+                          : v.type == rigidfmu::BaseType::Integer   ? "<Int32"
+                                                                    : "<Float64";
+    const std::string head = std::string(element) + " name=\"" + v.name + "\" valueReference=\"" +
+                             std::to_string(v.vr) + "\" description=\"";
+    EXPECT_TRUE(contains(xml, head)) << v.name;
+    if (v.type == rigidfmu::BaseType::Real) {
+      const size_t at = xml.find(head);
+      EXPECT_TRUE(contains(xml.substr(at, xml.find('\n', at) - at), " unit=\"" + v.unit + "\"")) << v.name;
+    }
+  }
+  // dependencies by value reference: b.linearMomentum[1] on b.velocity[1] and b.mass
+  const Variable& p = find(vars, "b.linearMomentum[1]");
+  EXPECT_TRUE(contains(xml, "<InitialUnknown valueReference=\"" + std::to_string(p.vr) + "\" dependencies=\""))
+      << xml.substr(xml.find("<ModelStructure>"));
+}
+
 TEST(Guid, SameSceneTextGivesSameGuid) {
   const std::string a = rigidfmu::sceneGuid(rigid::parseScene(kScene));
   const std::string b = rigidfmu::sceneGuid(rigid::parseScene(kScene));

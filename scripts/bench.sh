@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # scripts/bench.sh [--quick] [--out DIR]
-# The performance report (scripts/bench.py): builds the core and its Google Benchmark
+# The performance report (`rigidfmu report performance`): builds the core and its Google Benchmark
 # (rigid-bench-core) like build_fmu.sh (in build/, or $RIGIDFMU_BUILD), makes sure the
 # peers' venv (.venv-peers, MuJoCo) is there, then runs the core, FMU and MuJoCo
 # benchmarks in one run. Default: writes docs/reports/performance.md and docs/reports/performance/.
@@ -24,4 +24,4 @@ case " $* " in
   *" --quick "*) ;;
   *) . "$root/scripts/peers_venv.sh" ;;
 esac
-exec "$root/.venv/bin/python" "$root/scripts/bench.py" --build "$build" "$@"
+exec "$root/.venv/bin/python" -m rigidfmu report performance --build "$build" "$@"

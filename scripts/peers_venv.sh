@@ -9,6 +9,7 @@ if [ ! -f "$peers_stamp" ] || [ "$(cat "$peers_stamp")" != "$peers_want" ]; then
   "$peers_venv/bin/pip" install -q --disable-pip-version-check -r "$root/scripts/peers-requirements.txt"
   echo "$peers_want" > "$peers_stamp"
 fi
-# the shared references (python/rigidfmu/references) on its path, as in .venv
+# this package's Python code (python/rigidfmu: the peers' modules in reports/, the
+# references) on its path, as in .venv
 peers_site="$("$peers_venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
 [ -f "$peers_site/rigidfmu-source.pth" ] || echo "$root/python" > "$peers_site/rigidfmu-source.pth"

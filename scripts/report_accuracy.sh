@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # scripts/report_accuracy.sh [--quick] [--out DIR] [--scene SCENE.json --tolerance TOL ...]
-# The accuracy report of the integration methods (scripts/report_accuracy.py): builds the
+# The accuracy report of the integration methods (`rigidfmu report accuracy`): builds the
 # core like build_fmu.sh (in build/, or $RIGIDFMU_BUILD), then runs the report with the
 # venv's python; every argument is passed through. Default: writes docs/reports/accuracy.md
 # and docs/reports/accuracy/*.png.
@@ -15,4 +15,4 @@ case " $* " in
   *" --quick "*|*" --scene "*) ;;
   *) RIGIDFMU_SKIP_SETUP=1 "$root/scripts/peers.sh" --out "$root/docs/reports/peers.json" || echo "peers: not measured" >&2 ;;
 esac
-exec "$root/.venv/bin/python" "$root/scripts/report_accuracy.py" --build "$build" --no-build "$@"
+exec "$root/.venv/bin/python" -m rigidfmu report accuracy --build "$build" --no-build "$@"

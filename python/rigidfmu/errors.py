@@ -24,3 +24,11 @@ class ReplayError(RigidfmuError):
 
 class SimulationError(RigidfmuError):
     """The FMU refused a call during a simulation."""
+
+
+class StudyError(RigidfmuError, ValueError):
+    """A study file breaks a rule of the study format (the message names the field)."""
+
+
+class ReportError(RigidfmuError):
+    """A report cannot be made here (no core to build it from, a scene it cannot use)."""

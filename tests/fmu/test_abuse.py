@@ -619,8 +619,10 @@ FCL_GJK_ABORT = (
 
 
 def run_child(code, tmp_path, timeout):
+    """A Python child that can import this file (tests/fmu on its PYTHONPATH)."""
+    path = os.pathsep.join(p for p in (str(TESTS), os.environ.get("PYTHONPATH")) if p)
     return subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True,
-                          text=True, timeout=timeout)
+                          text=True, timeout=timeout, env=dict(os.environ, PYTHONPATH=path))
 
 
 @pytest.mark.parametrize("scene_file,seeds,calls", [
@@ -635,7 +637,7 @@ def run_child(code, tmp_path, timeout):
 def test_fuzzing_the_fmi_calls(fmu_of, scene_file, seeds, calls, tmp_path):
     fmu = fmu_of(example(scene_file))
     trace, result = tmp_path / "trace.txt", tmp_path / "result.json"
-    code = (f"import sys; sys.path.insert(0, {str(TESTS)!r}); import test_abuse; "
+    code = (f"import test_abuse; "
             f"test_abuse.fuzz_main({str(fmu)!r}, {seeds!r}, {calls}, {str(trace)!r}, "
             f"{str(result)!r})")
 
@@ -665,9 +667,7 @@ def test_fuzzing_the_fmi_calls(fmu_of, scene_file, seeds, calls, tmp_path):
 
 
 GRAVITY_OVERFLOW_CHILD = r"""
-import sys
-sys.path.insert(0, {tests!r})
-from harness import Slave, status_of
+from rigidfmu.driver import Slave, status_of
 s = Slave({fmu!r})
 s.initialize()
 s.set_values({{"gravity[3]": -1e308}})  # finite: accepted
@@ -680,7 +680,7 @@ print(s.log.text())
 # non-finite state (an FCL assertion aborted the process). Now refused as fmi2Discard.
 def test_overflowing_gravity_is_a_discard_not_a_crash(fmu_of, tmp_path):
     fmu = fmu_of(PLAYGROUND)
-    p = run_child(GRAVITY_OVERFLOW_CHILD.format(tests=str(TESTS), fmu=str(fmu)), tmp_path, 60)
+    p = run_child(GRAVITY_OVERFLOW_CHILD.format(fmu=str(fmu)), tmp_path, 60)
     assert p.returncode == 0, f"exit code {p.returncode}: {p.stderr[-1500:]}"
     assert p.stdout.startswith("Discard"), p.stdout
     assert "not finite" in p.stdout
@@ -768,7 +768,7 @@ def test_same_inputs_give_bitwise_the_same_outputs_in_two_processes(fmu_of, tmp_
     runs = []
     for k in range(2):
         out = tmp_path / f"run{k}.json"
-        code = (f"import sys; sys.path.insert(0, {str(TESTS)!r}); import test_abuse; "
+        code = (f"import test_abuse; "
                 f"test_abuse.deterministic_run({str(fmu)!r}, {str(out)!r})")
         p = run_child(code, tmp_path, timeout=120)
         assert p.returncode == 0, p.stderr[-3000:]

@@ -3,6 +3,7 @@ run, also when the snapshot was serialised in another process; bad bytes are ref
 with a message."""
 import ctypes
 import json
+import os
 import pathlib
 import subprocess
 import sys
@@ -52,9 +53,8 @@ def test_restored_state_continues_bitwise(fmu):
 
 
 CHILD = r"""
-import json, sys
-sys.path.insert(0, {tests!r})
-from harness import Slave
+import json
+from rigidfmu.driver import Slave
 from test_fmu_state import drive
 s = Slave({fmu!r})
 s.initialize()
@@ -69,8 +69,9 @@ json.dump(out, open({out!r}, "w"))
 
 def test_state_serialised_in_another_process_continues_bitwise(fmu, tmp_path):
     blob, out = tmp_path / "state.bin", tmp_path / "out.json"
-    code = CHILD.format(tests=str(pathlib.Path(__file__).parent), fmu=str(fmu), blob=str(blob), out=str(out))
-    subprocess.run([sys.executable, "-c", code], check=True, cwd=tmp_path)
+    code = CHILD.format(fmu=str(fmu), blob=str(blob), out=str(out))
+    here = os.pathsep.join(p for p in (str(pathlib.Path(__file__).parent), os.environ.get("PYTHONPATH")) if p)
+    subprocess.run([sys.executable, "-c", code], check=True, cwd=tmp_path, env=dict(os.environ, PYTHONPATH=here))
     s = Slave(fmu)
     try:
         state = s.slave.deSerializeFMUstate(blob.read_bytes())

@@ -1,4 +1,4 @@
-"""scripts/report_accuracy.py: the quick report runs, writes its figures and table, and
+"""rigidfmu report accuracy: the quick report runs, writes its figures and table, and
 the measured orders of convergence hold; the --scene mode recommends a method. No time
 is asserted (timings are figures only)."""
 import os
@@ -13,11 +13,10 @@ pytestmark = pytest.mark.slow  # a whole script or browser run (pyproject.toml)
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 ENV = dict(os.environ, RIGIDFMU_SKIP_SETUP="1")
-SCRIPT = str(ROOT / "scripts" / "report_accuracy.py")
 
 
 def run(*args):
-    return subprocess.run([sys.executable, SCRIPT, *args], capture_output=True, text=True,
+    return subprocess.run([sys.executable, "-m", "rigidfmu", "report", "accuracy", *args], capture_output=True, text=True,
                           env=ENV, cwd=ROOT, timeout=600)
 
 

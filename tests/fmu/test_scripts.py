@@ -1,4 +1,4 @@
-"""The reporting scripts run and print their figures (quick mode; no timing asserted)."""
+"""The smaller reports run and print their figures (quick mode; no timing asserted)."""
 import os
 import pathlib
 import re
@@ -19,7 +19,7 @@ def run(*args):
 
 
 def test_bench_pruning_prints_three_costs_and_ratios():
-    out = run("scripts/bench_pruning.py", "--quick")
+    out = run("-m", "rigidfmu", "report", "pruning", "--quick")
     rows = re.findall(r"^(bare integrator \(C\+\+\)|gravity-only FMU|every feature, far away)\s+"
                       r"([0-9.]+)\s+([0-9.]+)$", out, re.M)
     assert [r[0] for r in rows] == ["bare integrator (C++)", "gravity-only FMU", "every feature, far away"]
@@ -27,7 +27,7 @@ def test_bench_pruning_prints_three_costs_and_ratios():
 
 
 def test_fmu_table_lists_every_example_scene():
-    out = run("scripts/fmu_table.py", "--print", "--quick")
+    out = run("-m", "rigidfmu", "report", "fmus", "--print", "--quick")
     scenes = sorted(p.name for p in (ROOT / "scripts" / "scenes").glob("*.json"))
     lines = [l for l in out.splitlines() if l.startswith("| `")]
     assert [re.match(r"\| `([^`]+)`", l).group(1) for l in lines] == scenes

@@ -1,4 +1,4 @@
-"""The stability stress suite in quick mode (scripts/stress.py --quick): every case with
+"""The stability stress suite in quick mode (rigidfmu report stability --quick): every case with
 every integration method of the FMU; it must write a table with a row for every case
 and method, and no run may FAIL (a non-finite output or a broken criterion while the
 FMU answered fmi2OK). No timing is asserted."""
@@ -11,9 +11,9 @@ import sys
 import pytest
 from fmpy import read_model_description
 
+from rigidfmu.reports import stability as stress  # the case list, to check the table against it
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "scripts"))
-import stress  # noqa: E402  (the case list, to check the table against it)
 
 pytestmark = pytest.mark.slow  # a whole script or browser run (pyproject.toml)
 
@@ -28,7 +28,7 @@ def test_quick_stress_suite_has_every_case_and_method_and_nothing_fails(tmp_path
     methods = methods_of_the_fmu(fmu_of)  # builds the core if needed, as the suite would
     assert methods, "no SolverMethod enumeration"
     env = dict(os.environ, RIGIDFMU_SKIP_SETUP="1")
-    proc = subprocess.run([sys.executable, str(ROOT / "scripts" / "stress.py"), "--quick", "--out", str(tmp_path)],
+    proc = subprocess.run([sys.executable, "-m", "rigidfmu", "report", "stability", "--quick", "--out", str(tmp_path)],
                           capture_output=True, text=True, env=env, cwd=ROOT)
     table = tmp_path / "stability.md"
     assert table.exists(), proc.stdout[-3000:] + proc.stderr[-3000:]

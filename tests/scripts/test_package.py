@@ -17,7 +17,8 @@ from fmpy import simulate_fmu
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 BUILD = pathlib.Path(os.environ.get("RIGIDFMU_BUILD", ROOT / "build")).resolve()
 ENV = dict(os.environ, RIGIDFMU_SKIP_SETUP="1")
-COMMANDS = ("build", "check", "simulate", "replay")
+COMMANDS = ("build", "check", "simulate", "replay", "report", "study")
+REPORTS = ("accuracy", "stability", "performance", "pruning", "fmus")
 
 
 def rigidfmu(*args, python=sys.executable, env=ENV, cwd=ROOT):
@@ -33,6 +34,31 @@ def test_help_of_the_command_and_of_every_subcommand():
         sub = rigidfmu(command, "--help")
         assert sub.returncode == 0, sub.stderr
         assert sub.stdout.startswith(f"usage: rigidfmu {command}")
+    for report in REPORTS:
+        assert report in rigidfmu("report", "--help").stdout
+        sub = rigidfmu("report", report, "--help")
+        assert sub.returncode == 0, sub.stderr
+        assert sub.stdout.startswith(f"usage: rigidfmu report {report}"), sub.stdout
+        assert "--quick" in sub.stdout
+
+
+def test_report_and_study_usage_errors_and_failures():
+    wrong = rigidfmu("report", "nonsense")
+    assert wrong.returncode == 2 and "invalid choice: 'nonsense'" in wrong.stderr
+    assert rigidfmu("study").returncode == 2
+    assert rigidfmu("report", "accuracy", "--no-such-option").returncode == 2
+    missing = rigidfmu("study", "no-such-study.json")
+    assert missing.returncode == 1, missing.stderr
+    assert missing.stderr.startswith("rigidfmu: study: no-such-study.json:"), missing.stderr
+    assert "Traceback" not in missing.stderr
+
+
+def test_help_imports_neither_matplotlib_nor_dask():
+    code = ("import sys; from rigidfmu import cli\n"
+            "try:\n    cli.main(['--help'])\nexcept SystemExit:\n    pass\n"
+            "print(sorted(m for m in ('matplotlib', 'dask', 'distributed', 'numpy', 'fmpy') if m in sys.modules))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=ENV, cwd=ROOT)
+    assert done.stdout.strip().splitlines()[-1] == "[]", done.stdout + done.stderr
 
 
 @pytest.mark.parametrize("body, field, message", [

@@ -4,6 +4,8 @@ communication point, and R one of the reductions below. Nothing is evaluated as 
 """
 import numpy as np
 
+from rigidfmu.errors import StudyError
+
 REDUCTIONS = {
     "initial": "the value at t = 0",
     "final": "the value at stopTime",
@@ -16,8 +18,8 @@ REDUCTIONS = {
 }
 
 
-class MetricError(ValueError):
-    pass
+class MetricError(StudyError):
+    """A metric of a study file that breaks a rule."""
 
 
 def check_metric(name, spec):

@@ -10,9 +10,10 @@ from dataclasses import dataclass
 
 from fmpy import read_model_description
 
-from study_spec import StudyError, scene_variant
+from rigidfmu.native import SOURCE_ROOT
+from rigidfmu.study.spec import StudyError, scene_variant
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = SOURCE_ROOT  # the source tree: its build, scripts and docs
 
 
 @dataclass

@@ -15,7 +15,7 @@ import time
 import numpy as np
 from fmpy.fmi1 import FMICallException
 
-import study_metrics
+from rigidfmu.study import metrics as study_metrics
 from rigidfmu.driver import Fmu, Slave, Trace, status_name
 
 _local = threading.local()  # per worker thread: FMU content hash -> LoadedFmu

@@ -1,6 +1,6 @@
 """A study file: reading and checking it, and its design (the list of runs).
 
-The format is documented in README.md, "## Studies", and in `study.py --help`. Every
+The format is documented in README.md, "## Studies", and in `rigidfmu study --help`. Every
 rule is checked here, before anything is built or run, with a message that names the
 field, so that a misspelt key does not silently run a different study.
 """
@@ -15,16 +15,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from study_metrics import check_metric
+from rigidfmu.errors import StudyError  # noqa: F401 (the study's errors, by this name too)
+from rigidfmu.study.metrics import check_metric
 
 SECTIONS = ("parameters", "sceneFields", "inputs")
 TOP_KEYS = {"scene", "fmu", "stopTime", "stepSize", "design", *SECTIONS, "metrics",
             "trajectories"}
 DISTRIBUTIONS = {"uniform", "normal", "loguniform"}
-
-
-class StudyError(ValueError):
-    pass
 
 
 @dataclass

@@ -44,18 +44,19 @@ import time
 import pandas as pd
 from tqdm import tqdm
 
-import study_fmus
-import study_spec
-import study_store
-import study_worker
-from study_metrics import MetricError
+from rigidfmu.errors import StudyError
+from rigidfmu.native import SOURCE_ROOT
+from rigidfmu.study import fmus as study_fmus
+from rigidfmu.study import spec as study_spec
+from rigidfmu.study import store as study_store
+from rigidfmu.study import worker as study_worker
+from rigidfmu.study.metrics import MetricError
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
-HERE = pathlib.Path(__file__).resolve().parent
+ROOT = SOURCE_ROOT  # the source tree: its build, scripts and docs
 
 
-def parse_args(argv):
-    p = argparse.ArgumentParser(prog="study.sh", description=__doc__,
+def parse_args(argv, prog=None):
+    p = argparse.ArgumentParser(prog=prog or "rigidfmu study", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("study", type=pathlib.Path, help="the study file (.json or .toml)")
     p.add_argument("--out", type=pathlib.Path,
@@ -105,15 +106,35 @@ def failed_rows(batch, status, reason, metrics):
                  **{f"metric:{m}": float("nan") for m in metrics}) for r in batch]
 
 
+def _has_worker_code() -> bool:
+    import importlib.util
+    return importlib.util.find_spec("rigidfmu.study.worker") is not None
+
+
+def send_package(client):
+    """The workers of an existing cluster may not have this package: its Python code
+    goes to them as a zip (Dask puts it on their path) when one lacks it."""
+    if all(client.run(_has_worker_code).values()):
+        return
+    import tempfile
+    import zipfile
+    package = pathlib.Path(__file__).resolve().parents[1]
+    with tempfile.TemporaryDirectory() as tmp:
+        archive = pathlib.Path(tmp) / "rigidfmu.zip"
+        with zipfile.ZipFile(archive, "w") as z:
+            for f in sorted(package.rglob("*.py")):
+                if "node_modules" not in f.parts:
+                    z.write(f, f.relative_to(package.parent))
+        client.upload_file(str(archive))
+
+
 def connect(args):
     """A Dask client: to the given scheduler, or to an embedded LocalCluster."""
     import dask
     from distributed import Client, LocalCluster
     if args.scheduler:
         client = Client(args.scheduler)
-        # the workers of an existing cluster may not have this directory: send the code
-        for module in ("study_metrics.py", "study_worker.py"):
-            client.upload_file(str(HERE / module))
+        send_package(client)
         return client, None
     # a run that kills its worker is retried once before it counts as a crash
     with dask.config.set({"distributed.scheduler.allowed-failures": 1}):
@@ -165,12 +186,12 @@ def execute(client, todo, fmus, study, out, size):
     return len(todo)
 
 
-def main(argv=None):
-    args = parse_args(argv)
+def main(argv=None, prog=None):
+    args = parse_args(argv, prog)
     try:
         study = study_spec.load(args.study)
-    except (study_spec.StudyError, MetricError) as e:
-        sys.exit(f"study: {args.study}: {e}")
+    except (study_spec.StudyError, MetricError, OSError) as e:
+        raise StudyError(f"study: {args.study}: {e}") from e
     out = (args.out or ROOT / "out" / "study" / study.name).resolve()
     out.mkdir(parents=True, exist_ok=True)
     started = time.perf_counter()
@@ -181,7 +202,7 @@ def main(argv=None):
         fmus = study_fmus.prepare(study, sorted({r.variant for r in runs}), out)
         study_fmus.check_names(study, fmus)
     except (study_spec.StudyError, MetricError) as e:
-        sys.exit(f"study: {args.study}: {e}")
+        raise StudyError(f"study: {args.study}: {e}") from e
     for r in runs:
         r.run_id = study_spec.run_identity(r, fmus[r.variant].guid, study)
     if len({r.run_id for r in runs}) != len(runs):
@@ -209,11 +230,11 @@ def main(argv=None):
     for _, row in frame[frame["status"] != "ok"].head(5).iterrows():
         print(f"study: run {row['run']} {row['status']}: {row['reason']}", file=sys.stderr)
     if args.plot is not None:
-        import study_plot
+        from rigidfmu.study import plot as study_plot
         png = pathlib.Path(args.plot) if args.plot else out / f"{study.name}.png"
         study_plot.plot(frame, study, png)
         print(f"study: plot in {png}")
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -6,6 +6,8 @@ import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from rigidfmu.errors import StudyError  # noqa: E402
+
 
 def varied_columns(frame):
     """The design's numeric columns that take more than one value."""
@@ -19,7 +21,7 @@ def plot(frame, study, png):
     metrics = [f"metric:{m}" for m in study.metrics]
     factors = varied_columns(frame)
     if not metrics:
-        raise SystemExit("study: --plot needs metrics in the study file")
+        raise StudyError("study: --plot needs metrics in the study file")
     cols = 1 + len(factors)
     fig, axes = plt.subplots(len(metrics), cols, figsize=(4.2 * cols, 3.4 * len(metrics)),
                              squeeze=False)

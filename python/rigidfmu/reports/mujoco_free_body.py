@@ -1,5 +1,5 @@
 """One free rigid body in MuJoCo (no gravity), for the peers' scripts that set it
-beside ours (peers.py, stress_peers.py); runs in the peers' venv."""
+beside ours (accuracy_peers, stability_peers); runs in the peers' venv."""
 import mujoco
 
 MJCF = """

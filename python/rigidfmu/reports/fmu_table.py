@@ -4,7 +4,7 @@ libraries bundled beside it, win64's one DLL), its bundled libraries, its number
 (median of repeated runs through fmpy, 1 s communication steps). Rewrites the part of
 docs/reports/fmus.md between the fmu-table markers, or prints the table with --print.
 
-usage: fmu_table.py [--print] [--quick] [--build BUILD_DIR]"""
+usage: rigidfmu report fmus [--print] [--quick] [--build BUILD_DIR]"""
 import argparse
 import os
 import pathlib
@@ -16,9 +16,10 @@ import zipfile
 
 from fmpy import read_model_description
 
-from fmu_timing import seconds_per_internal_step
+from rigidfmu.native import SOURCE_ROOT
+from rigidfmu.reports.fmu_timing import seconds_per_internal_step
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = SOURCE_ROOT  # the source tree: its build, scripts and docs
 BEGIN, END = "<!-- fmu-table:begin -->", "<!-- fmu-table:end -->"
 
 
@@ -48,12 +49,12 @@ def table(build_dir, quick):
     return "\n".join(rows)
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None, prog=None):
+    p = argparse.ArgumentParser(prog=prog, description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--print", action="store_true", help="print the table instead of updating docs/reports/fmus.md")
     p.add_argument("--quick", action="store_true", help="one short run per scene")
     p.add_argument("--build", default=os.environ.get("RIGIDFMU_BUILD", ROOT / "build"))
-    args = p.parse_args()
+    args = p.parse_args(argv)
     text = table(pathlib.Path(args.build), args.quick)
     if args.print:
         print(text)

@@ -24,10 +24,10 @@ reference computed here (closed forms, or scipy's DOP853 at rtol 1e-12 on the pr
 own equations), the energy drift, |q| - 1 and the run time of the stepping.
 
 usage:
-  stress.py [--out DIR]            the full suite (1e7 steps, long runs, MuJoCo beside
+  rigidfmu report stability [--out DIR]  the full suite (1e7 steps, long runs, MuJoCo beside
                                    the fast-spin case when .venv-peers is there);
                                    writes DIR/stability.md (default docs/reports/)
-  stress.py --quick [--out DIR]    every case with every method, short runs
+  rigidfmu report stability --quick [--out DIR]  every case with every method, short runs
   options: --build DIR (default $RIGIDFMU_BUILD or build/), --no-build, --only SUBSTRING
            (cases whose key contains it), --no-peers, --jobs N
 
@@ -47,14 +47,16 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
+from rigidfmu.native import SOURCE_ROOT
 from rigidfmu import driver
+from rigidfmu.errors import ReportError
 from rigidfmu.scenes import G, body, free_spin, scene
-from rigidfmu.references.heave import heave  # noqa: E402
-from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle  # noqa: E402
-from fmu_build import ensure_core, package  # noqa: E402
-from rigidfmu.references.torque_free import torque_free_reference  # noqa: E402
+from rigidfmu.references.heave import heave
+from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle
+from rigidfmu.reports.fmu_build import ensure_core, package
+from rigidfmu.references.torque_free import torque_free_reference
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = SOURCE_ROOT  # the source tree: its build, scripts and docs
 RHO_WATER, MU_WATER = 998.2, 1.002e-3  # the "water" type (README)
 
 OUTCOMES = ("holds", "sub-stepped", "refused", "FAILS")
@@ -108,7 +110,7 @@ def spinner_scene(name, inertia, omega, step=1e-3):
 
 
 # ----------------------------------------------------------------------------------
-# loading FMUs (built by fmu_build.py) and running them (rigidfmu.driver)
+# loading FMUs (built by rigidfmu.reports.fmu_build) and running them (rigidfmu.driver)
 
 class Recorder(driver.Recorder):
     """The driver's logger keeping the first `cap` messages, and besides them the first
@@ -148,7 +150,7 @@ def discover_methods(build, folder):
     """[(name, value, description)] of the Enumeration SolverMethod, from a probe FMU."""
     probe = Model(package(build, folder, spinner_scene("Probe", (1, 2, 3), (0, 0, 1))), folder)
     if not probe.methods:
-        sys.exit("stress: no Enumeration SolverMethod in the modelDescription")
+        raise ReportError("report stability: no Enumeration SolverMethod in the modelDescription")
     return probe.methods, "solver.tolerance" in probe.vars
 
 
@@ -991,7 +993,7 @@ def write_table(path, all_cases, methods, rows, quick, peers, elapsed):
     lines = []
     lines.append("# Stability stress suite")
     lines.append("")
-    lines.append(f"Written by `scripts/stress.py{' --quick' if quick else ''}` (run it through `./scripts/stress.sh`); "
+    lines.append(f"Written by `python/rigidfmu/reports/stability.py{' --quick' if quick else ''}` (run it through `./scripts/stress.sh`); "
                  f"{len(all_cases)} cases × {len(names)} methods ({', '.join(names)}, read from the modelDescription's "
                  f"`SolverMethod`), {elapsed:.0f} s in all. "
                  + ("Quick mode: shorter runs (1e5 instead of 1e7 steps, 20 s instead of 100 s of tumbling, fewer communication steps)."
@@ -1065,7 +1067,7 @@ def write_table(path, all_cases, methods, rows, quick, peers, elapsed):
 
 
 def run_peers(quick, out_json):
-    """MuJoCo on the fast-spin case (scripts/stress_peers.py in .venv-peers): a dict
+    """MuJoCo on the fast-spin case (python/rigidfmu/reports/stability_peers.py in .venv-peers): a dict
     {case key: {method name: text}, '_about': text}, or None when unavailable."""
     py = ROOT / ".venv-peers" / "bin" / "python"
     if not py.exists():
@@ -1077,7 +1079,7 @@ def run_peers(quick, out_json):
             print(f"stress: peers unavailable ({exc})")
             return None
     try:
-        subprocess.run([str(py), str(ROOT / "scripts" / "stress_peers.py"), "--out", str(out_json)]
+        subprocess.run([str(py), "-m", "rigidfmu.reports.stability_peers", "--out", str(out_json)]
                        + (["--quick"] if quick else []), check=True, timeout=900)
         return json.loads(pathlib.Path(out_json).read_text())
     except Exception as exc:
@@ -1085,8 +1087,8 @@ def run_peers(quick, out_json):
         return None
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None, prog=None):
+    p = argparse.ArgumentParser(prog=prog, description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--quick", action="store_true")
     p.add_argument("--out", default=str(ROOT / "docs" / "reports"))
     p.add_argument("--build", default=os.environ.get("RIGIDFMU_BUILD", str(ROOT / "build")))
@@ -1094,9 +1096,9 @@ def main():
     p.add_argument("--only", default=None)
     p.add_argument("--no-peers", action="store_true")
     p.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1))
-    args = p.parse_args()
+    args = p.parse_args(argv)
     build = pathlib.Path(args.build).resolve()
-    ensure_core(build, args.no_build, "stress")
+    ensure_core(build, args.no_build, "report stability")
     start = time.perf_counter()
     folder = tempfile.mkdtemp(prefix="rigidfmu-stress-")
     try:

@@ -7,7 +7,7 @@ here is asserted; the targets are printed with PASS or MISS.
    split into broadphase, narrowphase, response and integration.
 2. FMU (fmpy's FMU2Slave): one fmi2DoStep of one internal step, reading every Real
    output, and the FMI layer's overhead over the core, for 1 and 100 bodies.
-3. MuJoCo (scripts/bench_peers.py in .venv-peers): the same piles and free bodies;
+3. MuJoCo (python/rigidfmu/reports/performance_peers.py in .venv-peers): the same piles and free bodies;
    the free body's orientation error at T against scipy's DOP853 (the accuracy
    report's reference), ours and theirs, so that ratios are quoted at equal accuracy;
    then the pile of 1000 (100 in quick mode) timed again, ours and theirs interleaved
@@ -22,7 +22,7 @@ here is asserted; the targets are printed with PASS or MISS.
 
 Times are CPU times (the machine is shared), medians of repeats.
 
-usage: bench.py [--quick] [--out DIR] [--build BUILD_DIR]   (scripts/bench.sh runs it)"""
+usage: rigidfmu report performance [--quick] [--out DIR] [--build BUILD_DIR]   (scripts/bench.sh runs it)"""
 import argparse
 import json
 import math
@@ -36,15 +36,16 @@ import tempfile
 import time
 
 import numpy as np
+from rigidfmu.native import SOURCE_ROOT
 from rigidfmu import driver
+from rigidfmu.errors import ReportError
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from rigidfmu.scenes import bench as bench_scenes  # noqa: E402
-from rigidfmu.references.quaternion import rotation_angle  # noqa: E402
-from report_accuracy import cpu_name  # noqa: E402
-from rigidfmu.references.torque_free import torque_free_reference  # noqa: E402
+from rigidfmu.scenes import bench as bench_scenes
+from rigidfmu.references.quaternion import rotation_angle
+from rigidfmu.reports.accuracy import cpu_name
+from rigidfmu.references.torque_free import torque_free_reference
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = SOURCE_ROOT  # the source tree: its build, scripts and docs
 PEERS_PYTHON = ROOT / ".venv-peers" / "bin" / "python"
 
 # The issue's targets
@@ -194,7 +195,7 @@ def run_manifold(build, scenes, folder, quick):
             runs.append(ours[("manifold", big)])
             mine = manifold_figures(runs[-1])["rest"]["s_per_simulated_s"]
             out = pathlib.Path(folder) / "pile_rest_timing.json"
-            subprocess.run([str(PEERS_PYTHON), str(ROOT / "scripts" / "bench_peers.py"), str(scenes), str(out),
+            subprocess.run([str(PEERS_PYTHON), "-m", "rigidfmu.reports.performance_peers", str(scenes), str(out),
                             "--pile-timing", str(big), "--at-rest"], check=True)
             theirs = json.loads(out.read_text())["s_per_simulated_s"]
             rows.append({"ours": mine, "mujoco": theirs, "ratio": mine / theirs})
@@ -337,7 +338,7 @@ def interleaved_pile_ratio(build, scenes, folder, n, rounds):
         ours, _ = run_core(build, scenes, quick=True, pattern=f"^BM_Pile/{n}/", reps=1)
         mine = pile_table(ours)[n]["s_per_simulated_s"]
         out = pathlib.Path(folder) / "pile_timing.json"
-        subprocess.run([str(PEERS_PYTHON), str(ROOT / "scripts" / "bench_peers.py"), str(scenes), str(out),
+        subprocess.run([str(PEERS_PYTHON), "-m", "rigidfmu.reports.performance_peers", str(scenes), str(out),
                         "--pile-timing", str(n)], check=True)
         theirs = json.loads(out.read_text())["s_per_simulated_s"]
         rows.append({"ours": mine, "mujoco": theirs, "ratio": mine / theirs})
@@ -350,7 +351,7 @@ def run_peers(scenes, folder, quick, T, dts):
     if not PEERS_PYTHON.exists():
         return None
     out = pathlib.Path(folder) / "peers.json"
-    cmd = [str(PEERS_PYTHON), str(ROOT / "scripts" / "bench_peers.py"), str(scenes), str(out),
+    cmd = [str(PEERS_PYTHON), "-m", "rigidfmu.reports.performance_peers", str(scenes), str(out),
            "--T", str(T), "--dts", ",".join(f"{d:g}" for d in dts)] + (["--quick"] if quick else [])
     subprocess.run(cmd, check=True)
     return json.loads(out.read_text())
@@ -568,7 +569,7 @@ def write_markdown(path, r):
       "All times are **CPU times** (the machine is shared, so wall time is noisier), medians "
       f"of {meta['repeats']}; nothing here is asserted by a test — the targets below are "
       "printed with PASS or MISS.\n")
-    w("Scenes: `scripts/bench_scenes.py` writes them once, and the core benchmark, the FMUs "
+    w("Scenes: `python/rigidfmu/scenes/bench.py` writes them once, and the core benchmark, the FMUs "
       "and MuJoCo run the same files. *Free*: N torque-free tumbling boxes, inertia "
       "diag(1, 2, 3) kg m², no gravity, no collisions, h = 1 ms. *Pile*: N cubes of 0.1 m "
       "and 1 kg (restitution 0, friction 0.6) in columns above a floor, falling for 1 s "
@@ -649,7 +650,7 @@ def write_markdown(path, r):
           "without `--quick` creates it).\n")
     else:
         w(f"{peers['engine']} from PyPI in its own venv (`.venv-peers`), run in the same "
-          "invocation by `scripts/bench_peers.py`, timed in C (`mj_step` with `nstep`, no "
+          "invocation by `python/rigidfmu/reports/performance_peers.py`, timed in C (`mj_step` with `nstep`, no "
           "Python between steps), CPU time, medians.\n")
         w("### Piles\n")
         w("Same cubes (free-joint boxes, same size, mass, start poses, friction 0.6), a floor "
@@ -829,17 +830,17 @@ def write_manifold_section(w, r):
         w("")
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None, prog=None):
+    p = argparse.ArgumentParser(prog=prog, description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--quick", action="store_true", help="short runs (for the test suite)")
     p.add_argument("--out", default=str(ROOT / "docs" / "reports"), help="writes OUT/performance.md and OUT/performance/")
     p.add_argument("--build", default=os.environ.get("RIGIDFMU_BUILD", str(ROOT / "build")))
-    args = p.parse_args()
+    args = p.parse_args(argv)
     t_start = time.perf_counter()
     build = pathlib.Path(args.build).resolve()
     out = pathlib.Path(args.out).resolve()
     if not (build / "rigid-bench-core").exists():
-        sys.exit(f"bench: no {build / 'rigid-bench-core'} (install libbenchmark-dev and build; "
+        raise ReportError(f"report performance: no {build / 'rigid-bench-core'} (install libbenchmark-dev and build; "
                  "scripts/bench.sh does both)")
     scenes = build / "bench-scenes"
     bench_scenes.write(scenes)

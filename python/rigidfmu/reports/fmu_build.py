@@ -1,12 +1,12 @@
-"""Building FMUs from the reports' scripts (report_accuracy.py, stress.py), as
+"""Building FMUs from the reports' scripts (rigidfmu.reports.accuracy, rigidfmu.reports.stability), as
 build_fmu.sh does: the core once, then one packaging per scene content (cached by a
 hash of the scene in `folder`)."""
 import hashlib
 import json
 import pathlib
-import sys
 
 from rigidfmu import fmu_package
+from rigidfmu.errors import ReportError
 from rigidfmu.native import Native, build_core
 
 
@@ -17,7 +17,7 @@ def ensure_core(build, no_build, who):
     prebuilt = (build / "rigidfmu-describe").exists() and not (build / "CMakeCache.txt").exists()
     if no_build or prebuilt:
         if not (build / "rigidfmu-describe").exists():
-            sys.exit(f"{who}: no rigidfmu-describe in {build} (build it, or drop --no-build)")
+            raise ReportError(f"{who}: no rigidfmu-describe in {build} (build it, or drop --no-build)")
         return
     build_core(build.resolve())
 

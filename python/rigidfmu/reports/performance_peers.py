@@ -1,4 +1,4 @@
-"""MuJoCo on the benchmark scenes of scripts/bench_scenes.py, run by scripts/bench.py in
+"""MuJoCo on the benchmark scenes of rigidfmu.scenes.bench, run by rigidfmu.reports.performance in
 the peers' own venv (.venv-peers, made by scripts/peers_venv.sh) and read back as JSON.
 
 - Piles: each pile_<N>.json converted to MJCF (free-joint boxes of the same size, mass,
@@ -13,13 +13,13 @@ the peers' own venv (.venv-peers, made by scripts/peers_venv.sh) and read back a
 - Free bodies: the free_<N>.json bodies (inertia diag(1, 2, 3), no gravity) with RK4 at
   the scene's step, CPU time per step for N = 1 .. 1000; and the first body alone with
   RK4 (and Euler) at the given steps for T seconds, its final orientation returned so
-  that bench.py measures its error against the same reference as ours.
+  that rigidfmu.reports.performance measures its error against the same reference as ours.
 
 - With --pile-timing N: only the CPU time of one simulated second of pile_<N> (Euler,
-  one repeat), for bench.py's interleaved ratio (ours and MuJoCo's, round by round);
+  one repeat), for the performance report's interleaved ratio (ours and MuJoCo's, round by round);
   with --at-rest too, of the third second (after 2 s untimed).
 
-usage: bench_peers.py SCENES_DIR OUT.json [--quick] [--T 10] [--dts 1e-2,1e-3]
+usage: python -m rigidfmu.reports.performance_peers SCENES_DIR OUT.json [--quick] [--T 10] [--dts 1e-2,1e-3]
                       [--pile-timing N [--at-rest]]"""
 import argparse
 import copy
@@ -199,8 +199,8 @@ def free_one(scene, integrator, dt, T, repeats):
             "us_per_step": per_step * 1e6, "s_per_simulated_s": per_step / dt}
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None, prog=None):
+    p = argparse.ArgumentParser(prog=prog, description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("scenes")
     p.add_argument("out")
     p.add_argument("--quick", action="store_true")
@@ -208,7 +208,7 @@ def main():
     p.add_argument("--dts", default="1e-2,1e-3")
     p.add_argument("--pile-timing", type=int, help="time pile_<N> once and write only that")
     p.add_argument("--at-rest", action="store_true", help="with --pile-timing: time the third second")
-    args = p.parse_args()
+    args = p.parse_args(argv)
     d = pathlib.Path(args.scenes)
     load = lambda name: json.loads((d / name).read_text())  # noqa: E731
     if args.pile_timing:

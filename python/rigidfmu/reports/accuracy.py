@@ -12,12 +12,12 @@ the stepping alone (one instance per configuration, fmi2Reset between runs,
 communication steps of 0.5 s).
 
 usage:
-  report_accuracy.py [--out DIR] [--runs N]          the full report: DIR/accuracy.md and
+  rigidfmu report accuracy [--out DIR] [--runs N]          the full report: DIR/accuracy.md and
                                                      DIR/accuracy/*.png (default DIR docs/reports/)
-  report_accuracy.py --quick [--out DIR]             a few steps per method, 1 run each,
+  rigidfmu report accuracy --quick [--out DIR]             a few steps per method, 1 run each,
                                                      the smooth problems only; exit status 1
                                                      when a measured order is off
-  report_accuracy.py --scene SCENE.json --tolerance TOL [--stop-time T]
+  rigidfmu report accuracy --scene SCENE.json --tolerance TOL [--stop-time T]
                                                      recommends the cheapest method and step
                                                      whose error on that scene is below TOL
 
@@ -37,14 +37,16 @@ import tempfile
 import time
 
 import numpy as np
+from rigidfmu.native import SOURCE_ROOT
 from rigidfmu import driver
+from rigidfmu.errors import ReportError
 from rigidfmu.scenes import G, body, free_spin, scene
-from rigidfmu.references.heave import heave  # noqa: E402
-from fmu_build import ensure_core, package  # noqa: E402
-from rigidfmu.references.torque_free import torque_free_reference  # noqa: E402
-from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle  # noqa: E402
+from rigidfmu.references.heave import heave
+from rigidfmu.reports.fmu_build import ensure_core, package
+from rigidfmu.references.torque_free import torque_free_reference
+from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = SOURCE_ROOT  # the source tree: its build, scripts and docs
 
 # Expected orders of the methods this script knows (error vs step; the adaptive method's
 # error vs tolerance is expected near 1) and the tolerance on the measured slope.
@@ -297,7 +299,7 @@ def problems():
 
 
 # ----------------------------------------------------------------------------------
-# running an FMU (built by fmu_build.py)
+# running an FMU (built by rigidfmu.reports.fmu_build)
 
 class Model(driver.Fmu):
     """One FMU: its methods (from the modelDescription), its variables, one extracted copy."""
@@ -306,7 +308,7 @@ class Model(driver.Fmu):
         super().__init__(fmu, folder=folder, prefix="acc-")
         self.methods = self.methods()  # (name, value, description)
         if not self.methods:
-            raise SystemExit("report_accuracy: no Enumeration SolverMethod in the modelDescription")
+            raise ReportError("report accuracy: no Enumeration SolverMethod in the modelDescription")
         self.has_tolerance = "solver.tolerance" in self.vars
         self.steps_var = self.vars.get("solver.steps")
         self.outputs = self.real_outputs()
@@ -514,7 +516,7 @@ def fmt_x(c, x):
 
 
 def peer_points(problem, peers):
-    """The peers' measurements (scripts/peers.py, JSON) on this problem."""
+    """The peers' measurements (python/rigidfmu/reports/accuracy_peers.py, JSON) on this problem."""
     return [p for p in peers if problem.key == "intermediate_axis"
             and p.get("problem", "").startswith("torque-free, intermediate axis")]
 
@@ -595,7 +597,7 @@ def write_markdown(path, results, model_methods, meta):
     L = []
     L.append("# Accuracy of the integration methods")
     L.append("")
-    L.append(f"Written by `scripts/report_accuracy.py{meta['args']}` on {meta['date']} "
+    L.append(f"Written by `python/rigidfmu/reports/accuracy.py{meta['args']}` on {meta['date']} "
              f"({meta['cpu']}). Do not edit by hand; rerun `./scripts/report_accuracy.sh`.")
     L.append("")
     L.append("Methods found in the FMU's `SolverMethod` enumeration: " +
@@ -823,7 +825,7 @@ def scene_mode(args, builder, folder):
     base = float(scene_dict.get("solver", {}).get("step", 1e-3))
     model = Model(builder(scene_dict), folder)
     if not any(n.endswith((".position[1]", ".orientation[1]")) for n in model.vars):
-        sys.exit("report_accuracy: the scene exposes no position or orientation output")
+        raise ReportError("report accuracy: the scene exposes no position or orientation output")
     comm = min(COMM, T)
     names = {n: v for n, v, _ in model.methods}
     # reference: the adaptive method at a tight tolerance, else rk4 (or the method of
@@ -838,7 +840,7 @@ def scene_mode(args, builder, folder):
         ref_label = f"{ref_name} at h = {base / 64:.3g} s (scene step / 64)"
         out, _, _, fail = model.run(names[ref_name], T, step=base / 64, comm=comm)
     if out is None:
-        sys.exit(f"report_accuracy: the reference run failed: {fail}")
+        raise ReportError(f"report accuracy: the reference run failed: {fail}")
     ref = scene_state(model, out)
     print(f"scene {scene_dict.get('name', 'scene')} to T = {T:g} s; reference: {ref_label}")
     print("error: max over bodies of |position component| (m) and orientation angle (rad) at T")
@@ -884,8 +886,8 @@ def scene_mode(args, builder, folder):
     return 0
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__,
+def main(argv=None, prog=None):
+    p = argparse.ArgumentParser(prog=prog, description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--quick", action="store_true",
                    help="a few steps per method, 1 run each, smooth problems; exit 1 on a wrong order")
@@ -900,11 +902,11 @@ def main():
     p.add_argument("--verbose", "-v", action="store_true", help="print every run")
     p.add_argument("--peers", default=str(ROOT / "docs" / "reports" / "peers.json"),
                    help="the peers' measurements (scripts/peers.sh) to draw beside ours, if the file exists")
-    args = p.parse_args()
+    args = p.parse_args(argv)
     if args.scene and args.tolerance is None:
         p.error("--scene needs --tolerance")
     build = pathlib.Path(args.build).resolve()
-    ensure_core(build, args.no_build, "report_accuracy")
+    ensure_core(build, args.no_build, "report accuracy")
     folder = tempfile.mkdtemp(prefix="rigidfmu-accuracy-")
     try:
         builder = functools.partial(package, build, folder)  # scene dict -> FMU path

@@ -7,7 +7,7 @@ run side by side in one process and printed as ratios to the baseline. The FMUs 
 stepped with 1 s communication steps (1000 internal steps) so that the FMI call is
 amortised. Figures only: nothing here is asserted.
 
-usage: bench_pruning.py [--quick] [--build BUILD_DIR]"""
+usage: rigidfmu report pruning [--quick] [--build BUILD_DIR]"""
 import argparse
 import json
 import os
@@ -17,9 +17,10 @@ import subprocess
 import sys
 import tempfile
 
-from fmu_timing import seconds_per_internal_step
+from rigidfmu.native import SOURCE_ROOT
+from rigidfmu.reports.fmu_timing import seconds_per_internal_step
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = SOURCE_ROOT  # the source tree: its build, scripts and docs
 
 BODY = {"name": "ball", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1.0,
         "position": [0, 0, 1000.0], "velocity": [1, 2, 3], "angularVelocity": [0.1, 2, 0.3]}
@@ -57,11 +58,11 @@ def bare_ns_per_step(build_dir, steps, repeats):
     return statistics.median(runs)
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None, prog=None):
+    p = argparse.ArgumentParser(prog=prog, description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--quick", action="store_true", help="short runs (for the test suite)")
     p.add_argument("--build", default=os.environ.get("RIGIDFMU_BUILD", ROOT / "build"))
-    args = p.parse_args()
+    args = p.parse_args(argv)
     build_dir = pathlib.Path(args.build)
     subprocess.run(["/usr/bin/cmake", "--build", str(build_dir), "--target", "rigid-bench-step"],
                    check=True, stdout=subprocess.DEVNULL)

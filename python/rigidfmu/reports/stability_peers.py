@@ -1,4 +1,4 @@
-"""MuJoCo beside the stress suite's fast-spin case (scripts/stress.py): the same torque-free
+"""MuJoCo beside the stress suite's fast-spin case (python/rigidfmu/reports/stability.py): the same torque-free
 symmetric top, principal inertia (2, 2, 3) kg m^2, omega0 30 deg off its axis with
 |omega| = (h |omega|) / h, h = 1e-2 s, 1e4 steps, no gravity, for h |omega| in
 {0.1, 1, 3, 6}, with MuJoCo's Euler, RK4 and implicit integrators. Per run: energy drift
@@ -8,7 +8,7 @@ rotation angle at T against the closed-form regular precession, whether MuJoCo w
 and the wall time. Run with the peers' venv (.venv-peers/bin/python); writes JSON for
 stress.py: {case key: {rigidfmu method: text}, "_about": text, "runs": [...]}.
 
-usage: stress_peers.py --out FILE [--quick]"""
+usage: python -m rigidfmu.reports.stability_peers --out FILE [--quick]"""
 import argparse
 import json
 import math
@@ -16,8 +16,8 @@ import time
 
 import mujoco
 import numpy as np
-from mujoco_free_body import free_body_model  # noqa: E402
-from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle as angle  # noqa: E402
+from rigidfmu.reports.mujoco_free_body import free_body_model
+from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle as angle
 
 I = np.array([2.0, 2.0, 3.0])
 H = 1e-2
@@ -70,11 +70,11 @@ def text(r):
     return s
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None, prog=None):
+    p = argparse.ArgumentParser(prog=prog, description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--out", required=True)
     p.add_argument("--quick", action="store_true", help="accepted for symmetry; the runs are short anyway")
-    args = p.parse_args()
+    args = p.parse_args(argv)
     runs = [run(i, hw) for hw in LEVELS for i in INTEGRATORS]
     out = {"runs": runs}
     for r in runs:
@@ -82,7 +82,7 @@ def main():
         for method in BESIDE[r["integrator"]]:
             out.setdefault(key, {})[method] = text(r)
     lines = [f"MuJoCo {mujoco.__version__} (PyPI, `.venv-peers`) on the fast-spin case: the same symmetric top, "
-             f"h = {H:g} s, {STEPS} steps (`scripts/stress_peers.py`). MuJoCo integrates the free joint's quaternion by the "
+             f"h = {H:g} s, {STEPS} steps (`python/rigidfmu/reports/stability_peers.py`). MuJoCo integrates the free joint's quaternion by the "
              "exact exponential of the body angular velocity and keeps it unit; its Euler is semi-implicit (velocity first). "
              "Shown beside the rigidfmu method of the same family (Euler beside euler and symplecticEuler, RK4 beside rk4 "
              "and lieRk4, implicit beside rosenbrock when the FMU has it).", "",

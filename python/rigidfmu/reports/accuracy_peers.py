@@ -5,7 +5,7 @@ gravity. For each of MuJoCo's integrators and time steps: the orientation error 
 the wall time per step and per simulated second (median of 5 runs). Writes JSON for
 report_accuracy.py to put on its diagrams.
 
-usage: peers.py [--quick] [--out FILE]"""
+usage: python -m rigidfmu.reports.accuracy_peers [--quick] [--out FILE]"""
 import argparse
 import json
 import pathlib
@@ -14,9 +14,10 @@ import time
 
 import mujoco
 import numpy as np
-from mujoco_free_body import free_body_model  # noqa: E402
-from rigidfmu.references.quaternion import rotation_angle as angle  # noqa: E402
-from rigidfmu.references.torque_free import torque_free_reference  # noqa: E402
+from rigidfmu.native import SOURCE_ROOT
+from rigidfmu.reports.mujoco_free_body import free_body_model
+from rigidfmu.references.quaternion import rotation_angle as angle
+from rigidfmu.references.torque_free import torque_free_reference
 
 I = np.array([1.0, 2.0, 3.0])
 W0 = np.array([0.01, 5.0, 0.01])
@@ -34,11 +35,11 @@ def run(integrator, dt):
     return np.array(data.qpos[3:7]), seconds / n
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None, prog=None):
+    p = argparse.ArgumentParser(prog=prog, description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--quick", action="store_true")
-    p.add_argument("--out", default=str(pathlib.Path(__file__).resolve().parents[1] / "docs" / "reports" / "peers.json"))
-    args = p.parse_args()
+    p.add_argument("--out", default=str(SOURCE_ROOT / "docs" / "reports" / "peers.json"))
+    args = p.parse_args(argv)
     q_ref = torque_free_reference(I, W0, T)
     rows = []
     steps = (1e-2, 1e-3) if not args.quick else (1e-2,)

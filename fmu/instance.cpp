@@ -46,13 +46,13 @@ std::string escapePercent(const std::string& s) {
 
 Instance* Instance::create(fmi2String instanceName, int type, fmi2String guid,
                            fmi2String resourceLocation, const fmi2CallbackFunctions* functions,
-                           fmi2Boolean loggingOn) {
+                           fmi2Boolean loggingOn, const char* function) {
   if (!functions) return nullptr;  // nowhere to report to; the standard requires them
   const std::string name = instanceName ? instanceName : "";
   auto refuse = [&](const std::string& why) -> Instance* {
     if (functions->logger)
       functions->logger(functions->componentEnvironment, name.c_str(), fmi2Error,
-                        "logStatusError", escapePercent("fmi2Instantiate: " + why).c_str());
+                        "logStatusError", escapePercent(std::string(function) + ": " + why).c_str());
     return nullptr;
   };
   if (name.empty()) return refuse("instanceName must be a non-empty string");

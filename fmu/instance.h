@@ -30,9 +30,14 @@ class Instance {
  public:
   // Reads the scene from the resources and checks the GUID; on failure logs why
   // through the callbacks' logger and returns nullptr.
+  // `function` names the caller in those messages (fmi2Instantiate, or the FMI 3
+  // adapter's fmi3InstantiateCoSimulation).
   static Instance* create(fmi2String instanceName, int type, fmi2String guid,
                           fmi2String resourceLocation, const fmi2CallbackFunctions* functions,
-                          fmi2Boolean loggingOn);
+                          fmi2Boolean loggingOn, const char* function = "fmi2Instantiate");
+
+  // The scene's variables, in value-reference order (the FMI 3 adapter checks types).
+  const std::vector<Variable>& variables() const { return vars_; }
 
   // Refuses (fmi2Error, logged) a call made in a state outside `allowed`.
   bool allowedIn(unsigned allowed, const char* function);

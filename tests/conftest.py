@@ -16,11 +16,12 @@ FMU_DIR = BUILD / "test-fmus"
 shutil.rmtree(FMU_DIR, ignore_errors=True)
 
 
-def build_fmu(scene: dict) -> pathlib.Path:
-    """The FMU of a scene (a dict in the scene format), built once per content."""
+def build_fmu(scene: dict, fmi: int = 2) -> pathlib.Path:
+    """The FMU of a scene (a dict in the scene format), built once per content and FMI
+    version (2 or 3)."""
     text = json.dumps(scene, indent=1, sort_keys=True)
     key = hashlib.sha256(text.encode()).hexdigest()[:16]
-    fmu = FMU_DIR / f"{scene.get('name', 'scene')}-{key}.fmu"
+    fmu = FMU_DIR / f"{scene.get('name', 'scene')}-{key}{'' if fmi == 2 else '-fmi3'}.fmu"
     if not fmu.exists():
         FMU_DIR.mkdir(parents=True, exist_ok=True)
         scene_file = FMU_DIR / f"{scene.get('name', 'scene')}-{key}.json"
@@ -29,7 +30,7 @@ def build_fmu(scene: dict) -> pathlib.Path:
         # a sanitizer runtime preloaded into the tests (ASan/UBSan build) is not for the
         # build tools: cmake's children hang under it
         env.pop("LD_PRELOAD", None)
-        subprocess.run([str(ROOT / "scripts" / "build_fmu.sh"), str(scene_file), str(fmu)],
+        subprocess.run([str(ROOT / "scripts" / "build_fmu.sh"), str(scene_file), str(fmu), "--fmi", str(fmi)],
                        check=True, env=env, stdout=subprocess.DEVNULL)
     return fmu
 

@@ -28,9 +28,10 @@ def existing_file(text: str) -> pathlib.Path:
     return path.resolve()
 
 
-def build_scene(scene: pathlib.Path, out: pathlib.Path, build_core: bool = True, win64: bool = True) -> pathlib.Path:
+def build_scene(scene: pathlib.Path, out: pathlib.Path, build_core: bool = True, win64: bool = True,
+                fmi: int = 2) -> pathlib.Path:
     core = native.find(build=build_core, win64=win64)
-    bundled = fmu_package.package(scene, out, core)
+    bundled = fmu_package.package(scene, out, core, fmi)
     platforms = "linux64" + (", win64" if core.win64 else "")
     print(f"rigidfmu: {scene.name} -> {out} ({platforms})" + (f", bundled: {', '.join(bundled)}" if bundled else ""),
           file=sys.stderr)
@@ -42,7 +43,7 @@ def build_scene(scene: pathlib.Path, out: pathlib.Path, build_core: bool = True,
 
 def cmd_build(args) -> int:
     out = (args.output or pathlib.Path(args.scene.stem + ".fmu")).resolve()
-    build_scene(args.scene, out, build_core=not args.no_build, win64=not args.no_win64)
+    build_scene(args.scene, out, build_core=not args.no_build, win64=not args.no_win64, fmi=args.fmi)
     print(out)
     return 0
 
@@ -117,6 +118,8 @@ def parser() -> argparse.ArgumentParser:
                    help="the FMU to write (default: the scene's file name with .fmu, here)")
     b.add_argument("--no-build", action="store_true",
                    help="in the source tree, package from the build tree as it is (no CMake build first)")
+    b.add_argument("--fmi", type=int, choices=(2, 3), default=2,
+                   help="FMI version of the FMU: 2 (FMI 2.0, the default) or 3 (FMI 3.0 Co-Simulation)")
     b.add_argument("--no-win64", action="store_true",
                    help="leave out binaries/win64 (by default the FMU carries linux64 and win64 binaries)")
     b.set_defaults(run=cmd_build)

@@ -1,7 +1,8 @@
 """One scene into one FMU (a zip):
 
     modelDescription.xml
-    binaries/linux64/<modelIdentifier>.so   the prebuilt library with just the modules
+    binaries/linux64/<modelIdentifier>.so   the prebuilt library (of the FMI 2.0 or 3.0
+                                            entry points) with just the modules
                                             the scene needs (src/modules.h), plus the
                                             shared libraries it needs beyond the C and
                                             C++ runtime, found through RUNPATH $ORIGIN
@@ -9,6 +10,9 @@
                                             MinGW-w64, everything linked in statically:
                                             it needs only Windows' own DLLs
     resources/scene.json
+
+An FMI 3.0 FMU (fmi=3) has the same layout with FMI 3's platform folders,
+binaries/x86_64-linux and binaries/x86_64-windows.
 
 The describe tool checks the scene first; its message names the field and the limit.
 """
@@ -36,10 +40,12 @@ class Description:
     modules: str
 
 
-def describe(scene: pathlib.Path, native: native_module.Native) -> Description:
-    """The scene checked and described by the core; SceneError with the core's message."""
+def describe(scene: pathlib.Path, native: native_module.Native, fmi: int = 2) -> Description:
+    """The scene checked and described by the core (modelDescription.xml for FMI 2.0 or
+    3.0); SceneError with the core's message."""
     with tempfile.TemporaryDirectory(prefix="rigidfmu-describe-") as out:
-        run = subprocess.run([str(native.describe), str(scene), out], capture_output=True, text=True)
+        run = subprocess.run([str(native.describe), str(scene), out, "--fmi", str(fmi)], capture_output=True,
+                             text=True)
         if run.returncode != 0:
             raise SceneError(run.stderr.strip() or f"{scene}: refused (exit status {run.returncode})")
         folder = pathlib.Path(out)
@@ -78,18 +84,21 @@ def bundle(dependency: pathlib.Path, folder: pathlib.Path) -> None:
     subprocess.run([patchelf, "--set-rpath", "$ORIGIN", str(copy)], check=True)
 
 
-def package(scene: pathlib.Path, out: pathlib.Path, native: native_module.Native) -> list[str]:
-    """Writes the FMU of `scene` to `out`, with a win64 binary when `native` has them;
-    returns the names of the bundled libraries."""
-    described = describe(scene, native)
-    library = native.library(described.modules)
+def package(scene: pathlib.Path, out: pathlib.Path, native: native_module.Native, fmi: int = 2) -> list[str]:
+    """Writes the FMI `fmi` (2 or 3) FMU of `scene` to `out`, with a win64 binary when
+    `native` has them; returns the names of the bundled libraries."""
+    if fmi not in (2, 3):
+        raise PackagingError(f"FMI version {fmi}: 2 or 3")
+    described = describe(scene, native, fmi)
+    library = native.library(described.modules, fmi)
     if not library.exists():
         raise PackagingError(f"no binary for modules {described.modules}: {library}")
-    dll = native.win64_library(described.modules)
+    dll = native.win64_library(described.modules, fmi)
     if dll is not None and not dll.exists():
         raise PackagingError(f"no win64 binary for modules {described.modules}: {dll}")
     with tempfile.TemporaryDirectory(prefix="rigidfmu-fmu-") as stage:
-        binaries = pathlib.Path(stage) / "binaries" / "linux64"
+        linux, windows = ("linux64", "win64") if fmi == 2 else ("x86_64-linux", "x86_64-windows")
+        binaries = pathlib.Path(stage) / "binaries" / linux
         binaries.mkdir(parents=True)
         shutil.copyfile(library, binaries / f"{described.model_identifier}.so")
         dependencies = runtime_dependencies(library)
@@ -100,9 +109,9 @@ def package(scene: pathlib.Path, out: pathlib.Path, native: native_module.Native
         with zipfile.ZipFile(partial, "w", zipfile.ZIP_DEFLATED) as z:
             z.writestr("modelDescription.xml", described.model_description)
             for f in sorted(binaries.iterdir()):
-                z.write(f, f"binaries/linux64/{f.name}")
+                z.write(f, f"binaries/{linux}/{f.name}")
             if dll is not None:
-                z.write(dll, f"binaries/win64/{described.model_identifier}.dll")
+                z.write(dll, f"binaries/{windows}/{described.model_identifier}.dll")
             z.write(scene, "resources/scene.json")
         partial.replace(out)  # a reader never sees half an FMU
     return [d.name for d in dependencies]

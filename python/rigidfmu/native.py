@@ -31,12 +31,13 @@ class Native:
     def describe(self) -> pathlib.Path:
         return self.directory / "rigidfmu-describe"
 
-    def library(self, modules: str) -> pathlib.Path:
-        """The FMU library for a module mask (the describe tool's `modules`)."""
-        return self.directory / f"rigidfmu_fmi2_{modules}.so"
+    def library(self, modules: str, fmi: int = 2) -> pathlib.Path:
+        """The FMU library for a module mask (the describe tool's `modules`) and FMI
+        version (2 or 3)."""
+        return self.directory / f"rigidfmu_fmi{fmi}_{modules}.so"
 
-    def win64_library(self, modules: str) -> pathlib.Path | None:
-        return self.win64 / f"rigidfmu_fmi2_{modules}.dll" if self.win64 else None
+    def win64_library(self, modules: str, fmi: int = 2) -> pathlib.Path | None:
+        return self.win64 / f"rigidfmu_fmi{fmi}_{modules}.dll" if self.win64 else None
 
 
 def in_source_tree() -> bool:

@@ -1,0 +1,245 @@
+"""The FMI 3.0 Co-Simulation FMU of a scene (build_fmu.sh --fmi 3, issue 21) through
+fmpy's FMI 3 support: valid, the same variables and the same run as the FMI 2 FMU of
+the scene, bitwise; states that continue bitwise, in this process and in another;
+reset; bad calls answered with fmi3Error and a message naming the variable or the
+state, the instance still usable."""
+import json
+import math
+import pathlib
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from fmpy import extract, read_model_description, simulate_fmu
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi3 import FMU3Slave, fmi3Error
+from fmpy.validation import validate_fmu
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+EXAMPLES = sorted(p.name for p in (ROOT / "scripts" / "scenes").glob("*.json"))
+
+
+def example(name):
+    return json.loads((ROOT / "scripts" / "scenes" / name).read_text())
+
+
+class Logged:
+    """An FMI 3 logMessage callback that keeps (status, category, message)."""
+
+    def __init__(self):
+        self.messages = []
+
+    def __call__(self, env, status, category, message):
+        self.messages.append((status, category.decode(), message.decode()))
+
+    def text(self):
+        return "\n".join(m for _, _, m in self.messages)
+
+
+class Fmi3:
+    """One instance of an FMI 3 FMU, addressed by variable name."""
+
+    def __init__(self, fmu, folder, name="fmi3", early_return_allowed=False):
+        self.md = read_model_description(str(fmu))
+        self.dir = extract(str(fmu), unzipdir=str(folder))
+        self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
+        self.floats = [v.valueReference for v in self.md.modelVariables if v.type == "Float64"]
+        self.log = Logged()
+        self.slave = FMU3Slave(guid=self.md.guid, unzipDirectory=self.dir,
+                               modelIdentifier=self.md.coSimulation.modelIdentifier, instanceName=name)
+        self.slave.instantiate(logMessage=self.log, earlyReturnAllowed=early_return_allowed)
+        self.time = 0.0
+
+    def start(self, values=None):
+        for name, value in (values or {}).items():
+            self.slave.setFloat64([self.vr[name]], [value])
+        self.slave.enterInitializationMode(startTime=0.0)
+        self.slave.exitInitializationMode()
+
+    def step(self, h):
+        result = self.slave.doStep(self.time, h)
+        self.time += h
+        return result
+
+    def outputs(self):
+        return self.slave.getFloat64(self.floats)
+
+    def close(self):
+        self.slave.freeInstance()
+
+
+@pytest.mark.parametrize("scene", EXAMPLES)
+def test_the_fmi3_fmu_is_valid_and_carries_both_platforms(scene, fmu_of):
+    fmu = fmu_of(example(scene), fmi=3)
+    assert validate_fmu(str(fmu)) == []
+    md = read_model_description(str(fmu))
+    assert md.fmiVersion == "3.0" and md.coSimulation is not None and md.modelExchange is None
+    import zipfile
+    names = zipfile.ZipFile(fmu).namelist()
+    ident = md.coSimulation.modelIdentifier
+    assert f"binaries/x86_64-linux/{ident}.so" in names
+    assert f"binaries/x86_64-windows/{ident}.dll" in names
+
+
+@pytest.mark.parametrize("scene", EXAMPLES)
+def test_the_same_variables_as_the_fmi2_fmu(scene, fmu_of):
+    two = read_model_description(str(fmu_of(example(scene))))
+    three = read_model_description(str(fmu_of(example(scene), fmi=3)))
+    kinds = {"Real": "Float64", "Integer": "Int32", "Enumeration": "Enumeration"}
+    assert [(v.name, v.valueReference, kinds[v.type], v.causality, v.variability, v.unit, v.description)
+            for v in two.modelVariables] == \
+           [(v.name, v.valueReference, v.type, v.causality, v.variability, v.unit, v.description)
+            for v in three.modelVariables]
+    assert two.guid == three.guid  # the instantiation token is the scene's GUID
+
+
+@pytest.mark.parametrize("scene", EXAMPLES)
+def test_simulate_fmu_gives_the_fmi2_run_bitwise(scene, fmu_of):
+    """Same scene, same steps: the same outputs, to the bit (one instance logic, one step)."""
+    runs = [simulate_fmu(str(fmu_of(example(scene), fmi=fmi)), stop_time=2.0, output_interval=0.01)
+            for fmi in (2, 3)]
+    assert runs[0].dtype.names == runs[1].dtype.names and len(runs[0]) == 201
+    for name in runs[0].dtype.names:
+        assert np.array_equal(runs[0][name], runs[1][name]), name
+
+
+def test_start_values_and_the_enumeration_through_int64(fmu_of, tmp_path):
+    fmu_file = fmu_of(example("default.json"), fmi=3)
+    default = Fmi3(fmu_file, tmp_path / "default")
+    default.start()
+    method = default.vr["solver.method"]
+    assert default.slave.getInt64([method]) == [2]  # rk4, the default
+    default.close()
+    fmu = Fmi3(fmu_file, tmp_path / "set")
+    fmu.slave.setInt64([method], [1])  # euler, before initialisation as FMI 3 wants
+    fmu.start({"ball.mass": 3.0})
+    assert fmu.slave.getInt64([method]) == [1]
+    assert fmu.slave.getFloat64([fmu.vr["ball.mass"]]) == [3.0]
+    fmu.close()
+
+
+def run_and_record(fmu, steps, h=0.01):
+    rows = []
+    for _ in range(steps):
+        fmu.step(h)
+        rows.append(fmu.outputs())
+    return rows
+
+
+def test_fmu_state_and_serialisation_continue_bitwise_here_and_in_another_process(fmu_of, tmp_path):
+    fmu_file = fmu_of(example("default.json"), fmi=3)
+    fmu = Fmi3(fmu_file, tmp_path / "a")
+    fmu.start()
+    run_and_record(fmu, 50)
+    state = fmu.slave.getFMUState()
+    blob = bytes(fmu.slave.serializeFMUState(state))
+    t = fmu.time
+    first = run_and_record(fmu, 50)
+    fmu.slave.setFMUState(state)
+    fmu.time = t
+    assert run_and_record(fmu, 50) == first
+    restored = fmu.slave.deserializeFMUState(blob)
+    fmu.slave.setFMUState(restored)
+    fmu.time = t
+    assert run_and_record(fmu, 50) == first
+    fmu.slave.freeFMUState(state)
+    fmu.slave.freeFMUState(restored)
+    fmu.close()
+
+    # another process: a fresh instance takes the bytes and continues the same way
+    (tmp_path / "state.bin").write_bytes(blob)
+    child = f"""
+import json, sys
+sys.path.insert(0, {str(pathlib.Path(__file__).parent)!r})
+from test_fmi3 import Fmi3, run_and_record
+fmu = Fmi3({str(fmu_file)!r}, {str(tmp_path / "b")!r}, "child")
+fmu.start()
+fmu.slave.setFMUState(fmu.slave.deserializeFMUState(open({str(tmp_path / "state.bin")!r}, "rb").read()))
+fmu.time = {t!r}
+print(json.dumps(run_and_record(fmu, 50)))
+"""
+    out = subprocess.run([sys.executable, "-c", child], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert json.loads(out.stdout) == first
+
+
+def test_reset_gives_a_fresh_instances_run(fmu_of, tmp_path):
+    fmu_file = fmu_of(example("default.json"), fmi=3)
+    fresh = Fmi3(fmu_file, tmp_path / "fresh")
+    fresh.start()
+    expected = run_and_record(fresh, 30)
+    fresh.close()
+    fmu = Fmi3(fmu_file, tmp_path / "reset")
+    fmu.start({"ball.mass": 5.0})
+    run_and_record(fmu, 40)
+    fmu.slave.reset()
+    fmu.time = 0.0
+    fmu.start()
+    assert run_and_record(fmu, 30) == expected
+    fmu.close()
+
+
+def status_of(call):
+    try:
+        call()
+        return "OK"
+    except FMICallException as e:
+        return {fmi3Error: "Error"}.get(e.status, str(e.status))
+
+
+def test_bad_calls_are_refused_with_a_message_and_the_instance_goes_on(fmu_of, tmp_path):
+    fmu = Fmi3(fmu_of(example("default.json"), fmi=3), tmp_path)
+    s, vr = fmu.slave, fmu.vr
+    assert status_of(lambda: s.doStep(0.0, 0.01)) == "Error"
+    assert "fmi3DoStep: not allowed in state Instantiated" in fmu.log.text()
+    fmu.start()
+    assert status_of(lambda: s.setFloat64([vr["slider.force[1]"]], [math.nan])) == "Error"
+    assert "slider.force[1]: must be finite, got nan" in fmu.log.text()
+    assert status_of(lambda: s.getFloat64([4000000000])) == "Error"
+    assert "fmi3GetFloat64: unknown value reference 4000000000" in fmu.log.text()
+    assert status_of(lambda: s.getInt32([vr["ball.mass"]])) == "Error"
+    assert "(ball.mass) is not an Int32: it is a Float64, use fmi3Get/SetFloat64" in fmu.log.text()
+    assert status_of(lambda: s.getInt64([vr["ball.mass"]])) == "Error"
+    assert status_of(lambda: s.setFloat64([vr["ball.mass"]], [-1.0])) == "Error"  # a fixed parameter, running
+    assert status_of(lambda: s.enterEventMode()) == "Error"
+    assert "fmi3EnterEventMode: not supported" in fmu.log.text()
+    assert status_of(lambda: s.doStep(0.0, -0.01)) == "Error"
+    assert "communicationStepSize must be > 0" in fmu.log.text()
+    # a refused call leaves the instance as it was: it steps on
+    event, terminate, early, reached = fmu.step(0.01)
+    assert (event, terminate, early) == (False, False, False) and reached == pytest.approx(0.01, abs=1e-15)
+    assert all(math.isfinite(x) for x in fmu.outputs())
+    fmu.close()
+
+
+def test_a_wrong_instantiation_token_or_model_exchange_is_refused(fmu_of, tmp_path):
+    fmu_file = fmu_of(example("spinner.json"), fmi=3)
+    md = read_model_description(str(fmu_file))
+    unzip = extract(str(fmu_file), unzipdir=str(tmp_path))
+    log = Logged()
+    s = FMU3Slave(guid="{not-the-token}", unzipDirectory=unzip, modelIdentifier=md.coSimulation.modelIdentifier,
+                  instanceName="bad")
+    with pytest.raises(Exception, match="Failed to instantiate"):
+        s.instantiate(logMessage=log)
+    assert "fmi3InstantiateCoSimulation: GUID {not-the-token} does not match" in log.text()
+
+
+def test_no_early_return_yet_a_step_runs_to_its_end(fmu_of, tmp_path):
+    """mightReturnEarlyFromDoStep is false until the impact early return lands: with
+    early return allowed, a step in which the ball lands on the floor runs to its end,
+    with the FMI 2 FMU's state."""
+    scene = example("default.json")
+    fmu3 = fmu_of(scene, fmi=3)
+    assert read_model_description(str(fmu3)).coSimulation.mightReturnEarlyFromDoStep is False
+    fmu = Fmi3(fmu3, tmp_path, early_return_allowed=True)
+    fmu.start()
+    event, terminate, early, reached = fmu.step(1.0)
+    assert (event, terminate, early, reached) == (False, False, False, 1.0)
+    ours = dict(zip(fmu.floats, fmu.outputs()))
+    fmu.close()
+    two = simulate_fmu(str(fmu_of(scene)), stop_time=1.0, output_interval=1.0)
+    md = read_model_description(str(fmu3))
+    for v in md.modelVariables:
+        if v.type == "Float64" and v.name in two.dtype.names:
+            assert ours[v.valueReference] == two[v.name][-1], v.name

@@ -5,7 +5,9 @@
 // callback that forwards to it), the resource path is turned into the file URI the
 // Instance reads, and Enumeration variables travel through fmi3Get/SetInt64.
 // Every variable is a scalar (docs/scene-format.md, "FMI 3.0"): value references,
-// names, units and descriptions are those of the FMI 2 FMU.
+// names, units and descriptions are those of the FMI 2 FMU. With the master's
+// permission (earlyReturnAllowed), fmi3DoStep returns early at the first bouncing
+// impact inside the step: earlyReturn and lastSuccessfulTime = the impact's instant.
 #include <cctype>
 #include <cstdarg>
 #include <cstdio>
@@ -38,6 +40,7 @@ struct Fmi3Instance {
   fmi3InstanceEnvironment environment = nullptr;
   fmi3LogMessageCallback logMessage = nullptr;
   std::string name;
+  bool earlyReturnAllowed = false;  // the master's permission (fmi3InstantiateCoSimulation)
   std::unique_ptr<Instance> core;
 };
 
@@ -167,7 +170,6 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
                                          fmi3InstanceEnvironment environment, fmi3LogMessageCallback logMessage,
                                          fmi3IntermediateUpdateCallback) {
   (void)visible, (void)eventModeUsed;  // no user interface; no events to handle
-  (void)earlyReturnAllowed;            // steps always run to their end (mightReturnEarlyFromDoStep is false)
   auto refuse = [&](const std::string& why) -> fmi3Instance {
     if (logMessage) logMessage(environment, fmi3Error, "logStatusError", ("fmi3InstantiateCoSimulation: " + why).c_str());
     return nullptr;
@@ -179,6 +181,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
     auto fmu = std::make_unique<Fmi3Instance>();
     fmu->environment = environment;
     fmu->logMessage = logMessage;
+    fmu->earlyReturnAllowed = earlyReturnAllowed == fmi3True;
     fmi2CallbackFunctions callbacks = {forwardLog, allocate, std::free, nullptr, fmu.get()};
     const std::string uri = fileUri(resourcePath);
     fmu->core.reset(Instance::create(instanceName, fmi2CoSimulation, instantiationToken, uri.c_str(), &callbacks,
@@ -403,13 +406,13 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
     if (!eventHandlingNeeded || !terminateSimulation || !earlyReturn || !lastSuccessfulTime)
       return i.error("fmi3DoStep: eventHandlingNeeded, terminateSimulation, earlyReturn and lastSuccessfulTime "
                      "must not be NULL");
-    const fmi2Status s = i.doStep(currentCommunicationPoint, communicationStepSize);
+    const fmi2Status s = i.doStep(currentCommunicationPoint, communicationStepSize, fmuOf(instance)->earlyReturnAllowed);
     fmi2Real reached = 0.0;
     fmi2Boolean terminated = fmi2False;
     i.getRealStatus(fmi2LastSuccessfulTime, &reached);
     i.getBooleanStatus(fmi2Terminated, &terminated);
     *eventHandlingNeeded = fmi3False;
-    *earlyReturn = fmi3False;
+    *earlyReturn = i.returnedEarly() ? fmi3True : fmi3False;
     *terminateSimulation = terminated == fmi2True ? fmi3True : fmi3False;
     *lastSuccessfulTime = reached;
     return s;

@@ -279,7 +279,8 @@ fmi2Status Instance::noVariablesOfType(const char* function, const fmi2ValueRefe
                " (this FMU has no variables of this type)");
 }
 
-fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
+fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h, bool returnEarlyAtImpact) {
+  returnedEarly_ = false;
   if (!std::isfinite(tc)) return error("fmi2DoStep: currentCommunicationPoint must be finite, got " + num(tc));
   if (!std::isfinite(h) || h <= 0.0)
     return error("fmi2DoStep: communicationStepSize must be > 0 and finite, got " + num(h));
@@ -295,8 +296,8 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
     return error("fmi2DoStep: communicationStepSize " + num(h) + " s needs more than 1e12 steps of solver.step = " +
                  num(model_.maxStep) + " s");
   rigid::clearContactLoads(data_);  // the contact loads are this step's
-  const Interval run = advance(h, true);
-  lastStepSize_ = h;
+  const Interval run = advance(h, true, returnEarlyAtImpact);
+  lastStepSize_ = run.impactAt >= 0.0 ? run.impactAt : h;
   if (!run.result.ok) {
     const rigid::StepResult& r = run.result;
     const double from = run.from, to = run.to;
@@ -337,11 +338,17 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h) {
             " s and must be reset or terminated");
     return fmi2Discard;
   }
+  if (run.impactAt >= 0.0) {
+    returnedEarly_ = true;
+    time_ = lastSuccessfulTime_ = tc + run.impactAt;
+    log(fmi2OK, "logEvents", "fmi3DoStep: returned early at the impact at t = " + num(time_) + " s");
+    return fmi2OK;
+  }
   time_ = lastSuccessfulTime_ = tc + h;
   return fmi2OK;
 }
 
-Instance::Interval Instance::advance(double h, bool report) {
+Instance::Interval Instance::advance(double h, bool report, bool stopAtImpact) {
   // Internal steps of solver.step, the last one shortened; a remainder within
   // rounding of zero is not a step of its own. Times are tc + k*step, never summed.
   const long n = std::max(1L, static_cast<long>(std::ceil(h / model_.maxStep - 1e-9)));
@@ -368,9 +375,10 @@ Instance::Interval Instance::advance(double h, bool report) {
       for (size_t k = 0; k < data_.input[b].loads.size(); ++k)
         data_.input[b].loads[k] = setInputs[b].loads[k] + mid * data_.inputRate[b].loads[k];
     }
-    const rigid::StepResult r = rigid::step(model_, data_, to - from);
+    const rigid::StepResult r = rigid::step(model_, data_, to - from, stopAtImpact);
     if (!r.ok) return {r, from, to};
     if (report) noteSubsteps(r, to - from);
+    if (r.impactAt >= 0.0) return {r, from, to, from + r.impactAt};
   }
   return {};
 }

@@ -57,7 +57,12 @@ class Instance {
   // Boolean and String: the FMU has no such variables; any reference is unknown.
   fmi2Status noVariablesOfType(const char* function, const fmi2ValueReference vr[], size_t n);
 
-  fmi2Status doStep(fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize);
+  // With returnEarlyAtImpact (FMI 3, earlyReturnAllowed), the step ends at the first
+  // bouncing impact inside it, the impulse applied; returnedEarly() then says so and
+  // the FMU's time is that instant.
+  fmi2Status doStep(fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize,
+                    bool returnEarlyAtImpact = false);
+  bool returnedEarly() const { return returnedEarly_; }
 
   // Directional derivatives of outputs after the next step with respect to inputs.
   fmi2Status getDirectionalDerivative(const fmi2ValueReference unknown[], size_t nUnknown,
@@ -107,8 +112,9 @@ class Instance {
   struct Interval {
     rigid::StepResult result;
     double from = 0.0, to = 0.0;  // s, the internal step that failed, from the start
+    double impactAt = -1.0;       // s from the start: where an early return stopped
   };
-  Interval advance(double h, bool report);
+  Interval advance(double h, bool report, bool stopAtImpact = false);
   // Logs when the sub-stepping of the internal steps starts, changes or stops.
   void noteSubsteps(const rigid::StepResult& r, double h);
 
@@ -127,6 +133,7 @@ class Instance {
   double time_ = 0.0;       // s, time of the last communication point
   double lastSuccessfulTime_ = 0.0;
   bool wantsToTerminate_ = false;  // fmi2Terminated status
+  bool returnedEarly_ = false;     // the last step ended at an impact (FMI 3 early return)
   std::string substepNote_;        // the sub-stepping last reported ("cause:count")
   std::string guid_;               // of the scene: checked when a state is deserialised
   double lastStepSize_ = 0.0;      // s, the last communication step (directional derivatives)

@@ -240,7 +240,7 @@ std::string modelDescription3(const rigid::Scene& scene) {
     << " canHandleVariableCommunicationStepSize=\"true\" maxOutputDerivativeOrder=\"1\""
     << " canBeInstantiatedOnlyOncePerProcess=\"false\" canGetAndSetFMUState=\"true\""
     << " canSerializeFMUState=\"true\" providesDirectionalDerivatives=\"true\""
-    << " needsExecutionTool=\"false\"/>\n";
+    << " mightReturnEarlyFromDoStep=\"true\" needsExecutionTool=\"false\"/>\n";
   writeUnits(x, vars);
   x << "  <TypeDefinitions>\n    <EnumerationType name=\"SolverMethod\">\n";
   writeMethodItems(x, "      ");

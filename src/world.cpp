@@ -182,6 +182,7 @@ struct StepContext {
   WorldData& data;
   double h;     // s, the internal step
   bool bouncy;  // some body of xi > 0 meets something: impacts are located
+  bool stopAtImpact = false;  // end the step at the first located impact
 };
 
 // The contacts of Y into the collision cache: pairs closer than `margin` too. The
@@ -425,6 +426,11 @@ StepResult stepOnce(StepContext& s) {
     s.data.steps += steps;
     done += taken;
     if (taken == rest || impacts >= kMaxImpactsPerStep) return {};
+    if (s.stopAtImpact && done > 0.0) {  // an impact inside the step, after its start
+      StepResult r;
+      r.impactAt = done;
+      return r;
+    }
   }
 }
 
@@ -476,7 +482,7 @@ void stabilitySubsteps(const WorldModel& model, const WorldData& data, double h,
 
 }  // namespace
 
-StepResult step(const WorldModel& model, WorldData& data, double h) {
+StepResult step(const WorldModel& model, WorldData& data, double h, bool stopAtImpact) {
   // More than this many sub-steps in one step is refused: the step should be smaller.
   // (Fast bodies cost a collision detection per sub-step, hence their lower cap.)
   constexpr long kMaxSubsteps = 1000000;
@@ -495,10 +501,14 @@ StepResult step(const WorldModel& model, WorldData& data, double h) {
   }
   if (data.profiling) data.profile.steps += plan.substeps;
   if constexpr (modules::kCollisions) wakeDriven(data);
-  StepContext context{model, data, h / static_cast<double>(plan.substeps), bouncyWorld(model)};
+  StepContext context{model, data, h / static_cast<double>(plan.substeps), bouncyWorld(model), stopAtImpact};
   for (long k = 0; k < plan.substeps; ++k) {
     StepResult r = stepOnce(context);
     if (!r.ok) return r;
+    if (r.impactAt >= 0.0) {
+      plan.impactAt = static_cast<double>(k) * context.h + r.impactAt;
+      return plan;
+    }
   }
   return plan;
 }

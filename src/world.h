@@ -116,6 +116,9 @@ struct StepResult {
   std::string cause;
   double stableStep = 0.0;  // s, the largest step that cause allows (when cause is set)
   double energyGain = 0.0;  // when cause is kEnergyGain: the body's relative gain it would reach
+  // With stopAtImpact: s into the step at which a bouncing impact was located and
+  // answered, the step ending there; < 0 when the step ran to its end.
+  double impactAt = -1.0;
 };
 
 // StepResult::cause of a step refused because a torque-free body's rotational energy
@@ -123,8 +126,10 @@ struct StepResult {
 inline constexpr const char* kEnergyGain = "rotational energy gain";
 
 // Advances the world by one internal step h (s). On a non-finite result the step is
-// not taken: Y stays as it was and the result names the body.
-StepResult step(const WorldModel& model, WorldData& data, double h);
+// not taken: Y stays as it was and the result names the body. With stopAtImpact, the
+// step ends at the first bouncing impact it locates inside it (the impulse applied),
+// and StepResult::impactAt says when (the FMI 3 FMU's early return).
+StepResult step(const WorldModel& model, WorldData& data, double h, bool stopAtImpact = false);
 
 
 }  // namespace rigid

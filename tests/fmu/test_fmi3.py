@@ -278,3 +278,67 @@ def test_without_permission_a_step_runs_to_its_end_as_the_fmi2_fmus(fmu_of, tmp_
             assert ours[v.valueReference] == two[v.name][-1], v.name
             compared += 1
     assert compared > 10
+
+
+def fuzz(fmu_file, folder, seed, calls=400):
+    """Random FMI 3 calls on one instance, the argument values drawn from normal ones,
+    edge ones (0, negative, NaN, Inf, huge) and unknown references. Returns the calls
+    whose answers broke a rule: a crash ends the child process instead."""
+    rng = np.random.default_rng(seed)
+    fmu = Fmi3(fmu_file, folder, f"fuzz{seed}", early_return_allowed=bool(seed % 2))
+    s, floats = fmu.slave, fmu.floats
+    method = fmu.vr["solver.method"]
+    numbers = [0.0, 1.0, -1.0, 1e-3, 0.01, 1e300, -1e300, math.nan, math.inf, -math.inf, 0.5, 2.0]
+    states, blobs, broken = [], [], []
+
+    def number():
+        return numbers[rng.integers(len(numbers))] if rng.random() < 0.5 else float(rng.normal(0, 3))
+
+    def vref():
+        return int(rng.choice(floats)) if rng.random() < 0.9 else int(rng.integers(len(floats), 2**32))
+
+    actions = {
+        "init": lambda: (s.enterInitializationMode(startTime=0.0), s.exitInitializationMode()),
+        "step": lambda: s.doStep(fmu.time, number()),
+        "step_ok": lambda: s.doStep(fmu.time, 0.01),
+        "set": lambda: s.setFloat64([vref()], [number()]),
+        "get": lambda: s.getFloat64(floats),
+        "method": lambda: s.setInt64([method], [int(rng.integers(-2, 10))]),
+        "terminate": lambda: s.terminate(),
+        "reset": lambda: s.reset(),
+        "get_state": lambda: states.append(s.getFMUState()),
+        "set_state": lambda: states and s.setFMUState(states[rng.integers(len(states))]),
+        "serialize": lambda: states and blobs.append(bytes(s.serializeFMUState(states[-1]))),
+        "deserialize": lambda: s.deserializeFMUState(
+            blobs[-1] if blobs and rng.random() < 0.7 else bytes(rng.integers(0, 256, 64, dtype=np.uint8))),
+    }
+    names = list(actions)
+    for n in range(calls):
+        name = names[rng.integers(len(names))]
+        try:
+            result = actions[name]()
+        except FMICallException:
+            continue  # refused: fine, if the instance lives on
+        if name == "get" and not all(math.isfinite(x) for x in result):
+            broken.append(f"call {n}: fmi3GetFloat64 OK with a non-finite value")
+        if name in ("step", "step_ok") and result is not None:
+            fmu.time = result[3]  # lastSuccessfulTime: where the next step starts
+    fmu.close()
+    return broken
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3, 4])
+def test_random_calls_never_crash_and_never_answer_ok_with_nonsense(seed, fmu_of, tmp_path):
+    """The abuse suite's random calls on the FMI 3 FMU, in a child process (a crash is
+    a failed test, not a lost run); under scripts/sanitize.sh the child runs with the
+    sanitizer runtimes too."""
+    fmu_file = fmu_of(example("default.json"), fmi=3)
+    child = f"""
+import json, sys
+sys.path.insert(0, {str(pathlib.Path(__file__).parent)!r})
+from test_fmi3 import fuzz
+print(json.dumps(fuzz({str(fmu_file)!r}, {str(tmp_path)!r}, {seed})))
+"""
+    out = subprocess.run([sys.executable, "-c", child], capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, f"exit {out.returncode}\n{out.stderr[-3000:]}"
+    assert json.loads(out.stdout.strip().splitlines()[-1]) == []

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -174,16 +175,20 @@ int reducePatch(const Vec3* pts, const double* sep, int n, const Vec3& m, int* k
   return k;
 }
 
-// The patch of a face contact: the reference face is the face of a box (A or B) whose
-// normal is within kFaceAlign of the contact normal n (a -> b); the incident feature
-// of the other shape (a box's face, a cylinder's end or side, a capsule's side; the
-// lowest point of a sphere, a standing capsule or a tilted cylinder) is clipped to the
-// reference face's rectangle. Points with a separation below `margin`
-// (or touching/overlapping) are appended to `out` as copies of `proto` with point,
-// normal and depth filled. Returns the number appended: 0 when this is no face
-// contact (or nothing of the feature lies on the face), and the caller keeps FCL's.
-int appendFacePatch(const Geo& A, const Geo& B, const Vec3& n, double margin, const Contact& proto,
-                    std::vector<Contact>& out) {
+// The reference face of a face contact: face k of the box `ref`, its outward normal m
+// turned toward the incident shape `inc`; axes k1 and k2 of ref span the face.
+struct ReferenceFace {
+  const Geo* ref = nullptr;
+  const Geo* inc = nullptr;
+  bool refIsB = false;  // the face is B's: the patch's normal (a -> b) is then -m
+  int k = 0, k1 = 1, k2 = 2;
+  Vec3 m = Vec3::Zero();           // outward unit normal, world frame
+  Vec3 faceCentre = Vec3::Zero();  // m, world frame
+};
+
+// The box face of A or B most nearly along the contact normal n (a -> b), when it is
+// within kFaceAlign of it; none for an edge or corner contact (or no box at all).
+std::optional<ReferenceFace> referenceFace(const Geo& A, const Geo& B, const Vec3& n) {
   double alignA = -1.0, alignB = -1.0;
   int kA = -1, kB = -1;
   for (int k = 0; k < 3; ++k) {
@@ -199,97 +204,122 @@ int appendFacePatch(const Geo& A, const Geo& B, const Vec3& n, double margin, co
   // B (the surface, when there is one) is the reference on a tie.
   const bool refIsB = kB >= 0 && alignB >= alignA - 1e-12;
   const double align = refIsB ? alignB : alignA;
-  if (align < kFaceAlign) return 0;
-  const Geo& ref = refIsB ? B : A;
-  const Geo& inc = refIsB ? A : B;
-  const int k = refIsB ? kB : kA;
-  const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+  if (align < kFaceAlign) return std::nullopt;
+  ReferenceFace f;
+  f.refIsB = refIsB;
+  f.ref = refIsB ? &B : &A;
+  f.inc = refIsB ? &A : &B;
+  f.k = refIsB ? kB : kA;
+  f.k1 = (f.k + 1) % 3;
+  f.k2 = (f.k + 2) % 3;
   const Vec3 toward = refIsB ? Vec3(-n) : n;  // from the reference shape to the incident one
-  const Vec3 m = ref.R.col(k).dot(toward) > 0.0 ? Vec3(ref.R.col(k)) : Vec3(-ref.R.col(k));
-  const Vec3 faceCentre = ref.p + m * ref.half[k];
+  const Vec3 axis = f.ref->R.col(f.k);
+  f.m = axis.dot(toward) > 0.0 ? axis : Vec3(-axis);
+  f.faceCentre = f.ref->p + f.m * f.ref->half[f.k];
+  return f;
+}
 
-  // The incident feature: a polygon (np >= 3), a segment (np == 2) or a point (np == 1).
-  Vec3 bufA[kMaxPoly], bufB[kMaxPoly];
-  int np = 0;
+// The face of the box `inc` that faces a reference face of normal m (its own normal
+// most nearly -m), as 4 vertices in pts.
+int incidentBoxFace(const Geo& inc, const Vec3& m, Vec3* pts) {
+  int j = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(inc.R.col(i).dot(m)) > std::abs(inc.R.col(j).dot(m))) j = i;
+  const Vec3 faceOut = inc.R.col(j).dot(m) > 0.0 ? Vec3(-inc.R.col(j)) : Vec3(inc.R.col(j));
+  const Vec3 c = inc.p + faceOut * inc.half[j];
+  const Vec3 u1 = inc.R.col((j + 1) % 3) * inc.half[(j + 1) % 3];
+  const Vec3 u2 = inc.R.col((j + 2) % 3) * inc.half[(j + 2) % 3];
+  pts[0] = c - u1 - u2;
+  pts[1] = c + u1 - u2;
+  pts[2] = c + u1 + u2;
+  pts[3] = c - u1 + u2;
+  return 4;
+}
+
+// The feature of a cylinder or capsule `inc` nearest a reference face of normal m, by
+// the tilt of its axis: an end disc (cylinder), a side line, or one lowest point.
+int incidentRoundFeature(const Geo& inc, const Vec3& m, Vec3* pts) {
+  const Vec3 u = inc.R.col(2);
+  const double c = u.dot(m);
+  const Vec3 down = -(m - c * u);  // in the plane across the axis, toward the face
+  if (inc.type == ShapeType::Cylinder && std::abs(c) >= kFaceAlign) {
+    // End disc facing the reference face: an octagon on its rim, starting at the
+    // rim's deepest point.
+    const Vec3 centre = inc.p + u * (c > 0.0 ? -inc.halfLength : inc.halfLength);
+    const Vec3 w1 = down.norm() > 1e-9 ? Vec3(down.normalized()) : anyPerpendicular(u);
+    const Vec3 w2 = u.cross(w1);
+    for (int i = 0; i < 8; ++i) {
+      const double th = i * kPi / 4.0;
+      pts[i] = centre + inc.radius * (std::cos(th) * w1 + std::sin(th) * w2);
+    }
+    return 8;
+  }
+  if (std::abs(c) <= kSideAlign) {
+    // Lying on its side: the line of the side (cylinder) or of the caps' lowest
+    // points (capsule).
+    const Vec3 off = inc.type == ShapeType::Cylinder ? Vec3(inc.radius * down.normalized())
+                                                      : Vec3(-inc.radius * m);
+    pts[0] = inc.p - u * inc.halfLength + off;
+    pts[1] = inc.p + u * inc.halfLength + off;
+    return 2;
+  }
+  // Standing capsule or tilted cylinder: one point, the lowest of the end cap
+  // (capsule) or of the end's rim (cylinder) nearer the face.
+  const Vec3 end = inc.p + u * (c > 0.0 ? -inc.halfLength : inc.halfLength);
+  pts[0] = inc.type == ShapeType::Capsule ? Vec3(end - inc.radius * m)
+                                          : Vec3(end + inc.radius * down.normalized());
+  return 1;
+}
+
+// The incident feature of the other shape, facing the reference face of normal m: a
+// polygon (>= 3 vertices), a segment (2) or a point (1), written to pts (kMaxPoly).
+int incidentFeature(const Geo& inc, const Vec3& m, Vec3* pts) {
   switch (inc.type) {
     case ShapeType::Sphere:
-      bufA[0] = inc.p - inc.radius * m;  // its lowest point on the face
-      np = 1;
-      break;
-    case ShapeType::Box: {
-      int j = 0;
-      for (int i = 1; i < 3; ++i)
-        if (std::abs(inc.R.col(i).dot(m)) > std::abs(inc.R.col(j).dot(m))) j = i;
-      const Vec3 faceOut = inc.R.col(j).dot(m) > 0.0 ? Vec3(-inc.R.col(j)) : Vec3(inc.R.col(j));
-      const Vec3 c = inc.p + faceOut * inc.half[j];
-      const Vec3 u1 = inc.R.col((j + 1) % 3) * inc.half[(j + 1) % 3];
-      const Vec3 u2 = inc.R.col((j + 2) % 3) * inc.half[(j + 2) % 3];
-      bufA[0] = c - u1 - u2;
-      bufA[1] = c + u1 - u2;
-      bufA[2] = c + u1 + u2;
-      bufA[3] = c - u1 + u2;
-      np = 4;
-      break;
-    }
+      pts[0] = inc.p - inc.radius * m;  // its lowest point on the face
+      return 1;
+    case ShapeType::Box:
+      return incidentBoxFace(inc, m, pts);
     case ShapeType::Cylinder:
-    case ShapeType::Capsule: {
-      const Vec3 u = inc.R.col(2);
-      const double c = u.dot(m);
-      const Vec3 down = -(m - c * u);  // in the plane across the axis, toward the face
-      if (inc.type == ShapeType::Cylinder && std::abs(c) >= kFaceAlign) {
-        // End disc facing the reference face: an octagon on its rim, starting at the
-        // rim's deepest point.
-        const Vec3 centre = inc.p + u * (c > 0.0 ? -inc.halfLength : inc.halfLength);
-        const Vec3 w1 = down.norm() > 1e-9 ? Vec3(down.normalized()) : anyPerpendicular(u);
-        const Vec3 w2 = u.cross(w1);
-        for (int i = 0; i < 8; ++i) {
-          const double th = i * kPi / 4.0;
-          bufA[i] = centre + inc.radius * (std::cos(th) * w1 + std::sin(th) * w2);
-        }
-        np = 8;
-      } else if (std::abs(c) <= kSideAlign) {
-        // Lying on its side: the line of the side (cylinder) or of the caps' lowest
-        // points (capsule).
-        const Vec3 off = inc.type == ShapeType::Cylinder ? Vec3(inc.radius * down.normalized())
-                                                          : Vec3(-inc.radius * m);
-        bufA[0] = inc.p - u * inc.halfLength + off;
-        bufA[1] = inc.p + u * inc.halfLength + off;
-        np = 2;
-      } else {
-        // Standing capsule or tilted cylinder: one point, the lowest of the end cap
-        // (capsule) or of the end's rim (cylinder) nearer the face.
-        const Vec3 end = inc.p + u * (c > 0.0 ? -inc.halfLength : inc.halfLength);
-        bufA[0] = inc.type == ShapeType::Capsule ? Vec3(end - inc.radius * m)
-                                                 : Vec3(end + inc.radius * down.normalized());
-        np = 1;
-      }
-      break;
-    }
+    case ShapeType::Capsule:
+      return incidentRoundFeature(inc, m, pts);
   }
+  return 0;
+}
 
-  // Clip to the reference face's rectangle (its four side planes).
-  const Vec3 sideAxis[4] = {ref.R.col(k1), -ref.R.col(k1), ref.R.col(k2), -ref.R.col(k2)};
-  const double sideHalf[4] = {ref.half[k1], ref.half[k1], ref.half[k2], ref.half[k2]};
-  Vec3* pts = bufA;
+// Clips the np points of the incident feature in pts to the reference face's rectangle
+// (its four side planes), using spare as the second buffer of the polygon clipping;
+// pts is left pointing at the buffer that holds the result. Returns the points left:
+// none when a point or a segment misses the face, which makes it an edge contact.
+int clipToFace(const ReferenceFace& f, int np, Vec3*& pts, Vec3* spare) {
+  const Geo& ref = *f.ref;
+  const Vec3 sideAxis[4] = {ref.R.col(f.k1), -ref.R.col(f.k1), ref.R.col(f.k2), -ref.R.col(f.k2)};
+  const double sideHalf[4] = {ref.half[f.k1], ref.half[f.k1], ref.half[f.k2], ref.half[f.k2]};
   if (np == 1) {
     for (int s = 0; s < 4; ++s)
-      if (sideAxis[s].dot(pts[0] - faceCentre) > sideHalf[s]) return 0;  // off the face: an edge
+      if (sideAxis[s].dot(pts[0] - f.faceCentre) > sideHalf[s]) return 0;
   } else if (np == 2) {
     for (int s = 0; s < 4; ++s)
-      if (!clipSegment(pts, sideAxis[s], sideHalf[s], faceCentre)) return 0;
+      if (!clipSegment(pts, sideAxis[s], sideHalf[s], f.faceCentre)) return 0;
   } else {
-    Vec3* other = bufB;
+    Vec3* other = spare;
     for (int s = 0; s < 4 && np > 0; ++s) {
-      np = clipPolygon(pts, np, sideAxis[s], sideHalf[s], faceCentre, other);
+      np = clipPolygon(pts, np, sideAxis[s], sideHalf[s], f.faceCentre, other);
       std::swap(pts, other);
     }
   }
+  return np;
+}
 
+// Appends the clipped points whose separation from the reference face is below
+// `margin` (or that touch or overlap it), at most kMaxPatch of them, well spread.
+int appendPatchPoints(const ReferenceFace& f, Vec3* pts, int np, double margin, const Contact& proto,
+                      std::vector<Contact>& out) {
   // Separation of each point from the reference face (< 0: penetration).
   double sep[kMaxPoly];
   int kept = 0;
   for (int i = 0; i < np; ++i) {
-    const double s = m.dot(pts[i] - faceCentre);
+    const double s = f.m.dot(pts[i] - f.faceCentre);
     if (s <= 0.0 || s < margin) {
       pts[kept] = pts[i];
       sep[kept] = s;
@@ -297,16 +327,35 @@ int appendFacePatch(const Geo& A, const Geo& B, const Vec3& n, double margin, co
     }
   }
   int keep[kMaxPatch];
-  const int count = reducePatch(pts, sep, kept, m, keep);
-  const Vec3 normal = refIsB ? Vec3(-m) : m;
+  const int count = reducePatch(pts, sep, kept, f.m, keep);
+  const Vec3 normal = f.refIsB ? Vec3(-f.m) : f.m;
   for (int i = 0; i < count; ++i) {
     Contact c = proto;
     c.normal = normal;
     c.depth = -sep[keep[i]];
-    c.point = pts[keep[i]] - m * (0.5 * sep[keep[i]]);  // midway between the feature and the face
+    c.point = pts[keep[i]] - f.m * (0.5 * sep[keep[i]]);  // midway between the feature and the face
     out.push_back(c);
   }
   return count;
+}
+
+// The patch of a face contact: the reference face is the face of a box (A or B) whose
+// normal is within kFaceAlign of the contact normal n (a -> b); the incident feature
+// of the other shape (a box's face, a cylinder's end or side, a capsule's side; the
+// lowest point of a sphere, a standing capsule or a tilted cylinder) is clipped to the
+// reference face's rectangle. Points with a separation below `margin`
+// (or touching/overlapping) are appended to `out` as copies of `proto` with point,
+// normal and depth filled. Returns the number appended: 0 when this is no face
+// contact (or nothing of the feature lies on the face), and the caller keeps FCL's.
+int appendFacePatch(const Geo& A, const Geo& B, const Vec3& n, double margin, const Contact& proto,
+                    std::vector<Contact>& out) {
+  const std::optional<ReferenceFace> face = referenceFace(A, B, n);
+  if (!face) return 0;
+  Vec3 bufA[kMaxPoly], bufB[kMaxPoly];
+  Vec3* pts = bufA;
+  int np = incidentFeature(*face->inc, face->m, pts);
+  np = clipToFace(*face, np, pts, bufB);
+  return appendPatchPoints(*face, pts, np, margin, proto, out);
 }
 
 // The separating-axis normal (a -> b) over the face normals of the boxes of the
@@ -467,6 +516,20 @@ struct CollisionDetector::Impl {
   // Contacts of one candidate pair, appended to out; pairs apart by less than
   // `speculative` (beyond the margin) as one contact along their separating axis.
   void narrowphase(const Pair& pr, double margin, double speculative, std::vector<Contact>& out);
+  // Two boxes by the separating-axis test: nothing when apart by `speculative` or more,
+  // their contacts when apart by less or overlapping across a face. False for a pair
+  // that overlaps at an edge, which FCL's box-box routine answers.
+  bool appendBoxesBySeparatingAxis(const Pair& pr, double margin, double speculative, const Contact& proto,
+                                   std::vector<Contact>& out);
+  // Two boxes apart by 0 < separation < speculative along n (a -> b): the touching
+  // contacts within the margin, else the facing patch or one point between them.
+  void appendApartBoxes(const Pair& pr, const Vec3& n, double separation, double margin, double speculative,
+                        const Contact& proto, std::vector<Contact>& out);
+  // Two overlapping boxes: the face patch along FCL's box-box normal, else its points.
+  void appendOverlappingBoxes(const Pair& pr, double margin, const Contact& proto, std::vector<Contact>& out);
+  // Any other pair, by fcl::collide: the face patch along its normal, else its points;
+  // false when FCL finds no overlap.
+  bool appendFclContacts(const Pair& pr, double margin, const Contact& proto, std::vector<Contact>& out);
   // A pair that does not overlap: its contacts when closer than the margin.
   void appendWithinMargin(const Pair& pr, double margin, const Contact& proto, std::vector<Contact>& out);
 };
@@ -587,101 +650,123 @@ void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, s
 
 void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, double speculative,
                                           std::vector<Contact>& out) {
-  const Geo& A = geo[pr.slotA];
-  const Geo& B = geo[pr.slotB];
   Contact proto;
   proto.a = pr.a;
   proto.b = pr.b;
   proto.surface = pr.surface;
+  if (geo[pr.slotA].type == ShapeType::Box && geo[pr.slotB].type == ShapeType::Box) {
+    if (speculative > 0.0 && appendBoxesBySeparatingAxis(pr, margin, speculative, proto, out)) return;
+    appendOverlappingBoxes(pr, margin, proto, out);
+    return;
+  }
+  if (appendFclContacts(pr, margin, proto, out)) return;
+  appendWithinMargin(pr, speculative, proto, out);
+}
 
-  if (A.type == ShapeType::Box && B.type == ShapeType::Box) {
-    Vec3 n;
-    // Apart: the separating-axis test bounds the gap from below, cheaply, and most
-    // candidate pairs of a pile end here (their bounding boxes overlap, they do not).
-    // Only a bound below the margin needs FCL's distance (GJK, costly) for the touching
-    // contact's points; a pair within the speculative distance is one contact along
-    // that axis, or its facing patch.
-    if (speculative > 0.0) {
-      bool faceAxis = false;
-      const double separation = boxSeparation(A, B, n, speculative, faceAxis);
-      if (separation >= speculative) return;
-      // Overlapping across a face: that face's patch, with the axis of least
-      // penetration as its normal (what FCL's box-box routine would find), and the
-      // pair's overlap along it for the position correction.
-      if (separation <= 0.0 && faceAxis) {
-        const size_t first = out.size();
-        if (appendFacePatch(A, B, n, margin, proto, out) > 0) {
-          for (size_t k = first; k < out.size(); ++k) out[k].pairOverlap = -separation;
-          return;
-        }
-      }
-      if (separation > 0.0) {
-        if (separation < margin) {
-          // touching within the margin by GJK's distance; if that distance is not
-          // within it after all, the pair is still a speculative one
-          const size_t before = out.size();
-          appendWithinMargin(pr, margin, proto, out);
-          if (out.size() > before) return;
-        }
-        // Facing faces (a cube above another): the patch, whose centre is where an
-        // impulse stopping the approach acts without turning the pair; edges and
-        // corners: one point between the two support points.
-        if (appendFacePatch(A, B, n, speculative, proto, out) > 0) return;
-        Contact c = proto;
-        c.normal = n;
-        c.depth = -separation;
-        c.point = 0.5 * (supportPoint(A, n) + supportPoint(B, -n));
-        out.push_back(c);
-        return;
-      }
+bool CollisionDetector::Impl::appendBoxesBySeparatingAxis(const Pair& pr, double margin, double speculative,
+                                                          const Contact& proto, std::vector<Contact>& out) {
+  const Geo& A = geo[pr.slotA];
+  const Geo& B = geo[pr.slotB];
+  // Apart: the separating-axis test bounds the gap from below, cheaply, and most
+  // candidate pairs of a pile end here (their bounding boxes overlap, they do not).
+  // Only a bound below the margin needs FCL's distance (GJK, costly) for the touching
+  // contact's points; a pair within the speculative distance is one contact along
+  // that axis, or its facing patch.
+  Vec3 n;
+  bool faceAxis = false;
+  const double separation = boxSeparation(A, B, n, speculative, faceAxis);
+  if (separation >= speculative) return true;
+  // Overlapping across a face: that face's patch, with the axis of least
+  // penetration as its normal (what FCL's box-box routine would find), and the
+  // pair's overlap along it for the position correction.
+  if (separation <= 0.0 && faceAxis) {
+    const size_t first = out.size();
+    if (appendFacePatch(A, B, n, margin, proto, out) > 0) {
+      for (size_t k = first; k < out.size(); ++k) out[k].pairOverlap = -separation;
+      return true;
     }
-    // Overlapping: FCL's own box-box routine (ODE's dBoxBox2, the one fcl::collide
-    // runs for this pair), called directly into a reused buffer so that the hot pair of
-    // a box pile allocates nothing. Its normal points from box 1 to 2.
-    boxContacts.clear();
-    double depth = 0.0;
-    int code = 0;
-    fcl::detail::boxBox2<double>(2.0 * A.half, object(pr.slotA)->getTransform(), 2.0 * B.half,
-                                 object(pr.slotB)->getTransform(), n, &depth, &code, 4, boxContacts);
-    if (code != 0) {
-      if (appendFacePatch(A, B, n, margin, proto, out) > 0) return;
-      for (const fcl::ContactPointd& cp : boxContacts) {  // edge-edge: one point
-        Contact c = proto;
-        c.normal = cp.normal;
-        c.depth = std::max(cp.penetration_depth, 0.0);
-        c.point = cp.pos;
-        out.push_back(c);
-      }
-      return;
-    }
+  }
+  if (!(separation > 0.0)) return false;  // overlapping at an edge: FCL's box-box routine
+  appendApartBoxes(pr, n, separation, margin, speculative, proto, out);
+  return true;
+}
+
+void CollisionDetector::Impl::appendApartBoxes(const Pair& pr, const Vec3& n, double separation, double margin,
+                                               double speculative, const Contact& proto,
+                                               std::vector<Contact>& out) {
+  const Geo& A = geo[pr.slotA];
+  const Geo& B = geo[pr.slotB];
+  if (separation < margin) {
+    // touching within the margin by GJK's distance; if that distance is not
+    // within it after all, the pair is still a speculative one
+    const size_t before = out.size();
+    appendWithinMargin(pr, margin, proto, out);
+    if (out.size() > before) return;
+  }
+  // Facing faces (a cube above another): the patch, whose centre is where an
+  // impulse stopping the approach acts without turning the pair; edges and
+  // corners: one point between the two support points.
+  if (appendFacePatch(A, B, n, speculative, proto, out) > 0) return;
+  Contact c = proto;
+  c.normal = n;
+  c.depth = -separation;
+  c.point = 0.5 * (supportPoint(A, n) + supportPoint(B, -n));
+  out.push_back(c);
+}
+
+void CollisionDetector::Impl::appendOverlappingBoxes(const Pair& pr, double margin, const Contact& proto,
+                                                     std::vector<Contact>& out) {
+  const Geo& A = geo[pr.slotA];
+  const Geo& B = geo[pr.slotB];
+  // FCL's own box-box routine (ODE's dBoxBox2, the one fcl::collide runs for this
+  // pair), called directly into a reused buffer so that the hot pair of a box pile
+  // allocates nothing. Its normal points from box 1 to 2.
+  boxContacts.clear();
+  Vec3 n;
+  double depth = 0.0;
+  int code = 0;
+  fcl::detail::boxBox2<double>(2.0 * A.half, object(pr.slotA)->getTransform(), 2.0 * B.half,
+                               object(pr.slotB)->getTransform(), n, &depth, &code, 4, boxContacts);
+  if (code == 0) {
     // touching to rounding (the two tests disagree at a gap of zero)
     appendWithinMargin(pr, margin, proto, out);
     return;
   }
+  if (appendFacePatch(A, B, n, margin, proto, out) > 0) return;
+  for (const fcl::ContactPointd& cp : boxContacts) {  // edge-edge: one point
+    Contact c = proto;
+    c.normal = cp.normal;
+    c.depth = std::max(cp.penetration_depth, 0.0);
+    c.point = cp.pos;
+    out.push_back(c);
+  }
+}
 
+bool CollisionDetector::Impl::appendFclContacts(const Pair& pr, double margin, const Contact& proto,
+                                                std::vector<Contact>& out) {
+  const Geo& A = geo[pr.slotA];
+  const Geo& B = geo[pr.slotB];
   fcl::CollisionObjectd* oA = object(pr.slotA);
   fcl::CollisionObjectd* oB = object(pr.slotB);
   result.clear();
   fcl::collide(oA, oB, request, result);
-  if (result.numContacts() > 0) {
-    // FCL's normal points from o1 to o2; o1 is A's geometry unless FCL swapped them.
-    const fcl::Contactd& first = result.getContact(0);
-    const double sign = first.o1 == oA->collisionGeometry().get() ? 1.0 : -1.0;
-    const Vec3 n = sign * first.normal;
-    if (appendFacePatch(A, B, n, margin, proto, out) > 0) return;
-    for (size_t i = 0; i < result.numContacts(); ++i) {
-      const fcl::Contactd& fc = result.getContact(i);
-      Contact c = proto;
-      c.normal = (fc.o1 == oA->collisionGeometry().get() ? 1.0 : -1.0) * fc.normal;
-      c.depth = std::max(fc.penetration_depth, 0.0);
-      c.point = fc.pos;
-      if (A.type == ShapeType::Sphere && B.type == ShapeType::Sphere)  // midway in the overlap
-        c.point = A.p + c.normal * (A.radius - 0.5 * c.depth);
-      out.push_back(c);
-    }
-    return;
+  if (result.numContacts() == 0) return false;
+  // FCL's normal points from o1 to o2; o1 is A's geometry unless FCL swapped them.
+  const fcl::Contactd& first = result.getContact(0);
+  const double sign = first.o1 == oA->collisionGeometry().get() ? 1.0 : -1.0;
+  const Vec3 n = sign * first.normal;
+  if (appendFacePatch(A, B, n, margin, proto, out) > 0) return true;
+  for (size_t i = 0; i < result.numContacts(); ++i) {
+    const fcl::Contactd& fc = result.getContact(i);
+    Contact c = proto;
+    c.normal = (fc.o1 == oA->collisionGeometry().get() ? 1.0 : -1.0) * fc.normal;
+    c.depth = std::max(fc.penetration_depth, 0.0);
+    c.point = fc.pos;
+    if (A.type == ShapeType::Sphere && B.type == ShapeType::Sphere)  // midway in the overlap
+      c.point = A.p + c.normal * (A.radius - 0.5 * c.depth);
+    out.push_back(c);
   }
-  appendWithinMargin(pr, speculative, proto, out);
+  return true;
 }
 
 void CollisionDetector::Impl::appendWithinMargin(const Pair& pr, double margin, const Contact& proto,

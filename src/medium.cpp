@@ -223,6 +223,92 @@ struct BoxPlane {
   double offset;  // m
 };
 
+// The planes of the box [lo, hi] that cut P's bounding sphere: the others leave P whole.
+struct CuttingPlanes {
+  BoxPlane plane[6];
+  int n = 0;
+};
+
+CuttingPlanes planesCutting(const Polyhedron& P, const Vec3& lo, const Vec3& hi) {
+  CuttingPlanes box;
+  for (int k = 0; k < 3; ++k) {
+    if (hi[k] < P.radius) box.plane[box.n++] = {k, 1.0, hi[k]};
+    if (lo[k] > -P.radius) box.plane[box.n++] = {k, -1.0, lo[k]};
+  }
+  return box;
+}
+
+// Adds to m the faces of P clipped by the box. Most faces are wholly inside or wholly
+// outside one of the planes: they are taken or dropped without clipping.
+void addFacesInBox(const Polyhedron& P, const CuttingPlanes& box, Moments& m) {
+  Polygon<kMaxFace> faceA, faceB;
+  for (int f = 0; f < P.nFaces; ++f) {
+    const int begin = P.faceStart[f], end = P.faceStart[f + 1];
+    int cutting[6];
+    int nCutting = 0;
+    bool dropped = false;
+    for (int c = 0; c < box.n && !dropped; ++c) {
+      const BoxPlane& bp = box.plane[c];
+      int out = 0;
+      for (int i = begin; i < end; ++i)
+        out += bp.sign * (P.vertex[P.index[i]][bp.axis] - bp.offset) > 0.0;
+      if (out == end - begin) dropped = true;
+      else if (out > 0) cutting[nCutting++] = c;
+    }
+    if (dropped) continue;
+    Polygon<kMaxFace>* a = &faceA;
+    Polygon<kMaxFace>* b = &faceB;
+    a->n = 0;
+    for (int i = begin; i < end; ++i) a->push(P.vertex[P.index[i]]);
+    for (int c = 0; c < nCutting && a->n > 0; ++c) {
+      const BoxPlane& bp = box.plane[cutting[c]];
+      clip(*a, bp.sign * Vec3::Unit(bp.axis), bp.sign * bp.offset, *b);
+      std::swap(a, b);
+    }
+    m.addFace(*a);
+  }
+}
+
+// Adds to m the section that P makes in the box's plane bp: a rectangle bounded by the
+// box in the other two axes (and by P's bounding cube, to keep the numbers small),
+// clipped by the faces of P that reach the plane. Only those bound the section (a
+// convex polygon is the intersection of its edges' half-planes); the others are
+// skipped. A plane that no face reaches misses P and adds nothing.
+void addBoxSection(const Polyhedron& P, const BoxPlane& bp, const Vec3& lo, const Vec3& hi, Moments& m) {
+  const double big = 2.0 * P.radius;
+  const int k = bp.axis, k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+  const double l1 = std::max(lo[k1], -big), h1 = std::min(hi[k1], big);
+  const double l2 = std::max(lo[k2], -big), h2 = std::min(hi[k2], big);
+  if (!(l1 < h1 && l2 < h2)) return;
+  const double corners[4][2] = {{l1, l2}, {h1, l2}, {h1, h2}, {l1, h2}};
+  Polygon<kMaxSection> sectionA, sectionB;
+  Polygon<kMaxSection>* s = &sectionA;
+  Polygon<kMaxSection>* t = &sectionB;
+  s->n = 0;
+  for (int q = 0; q < 4; ++q) {
+    const double(&cc)[2] = corners[bp.sign > 0 ? q : 3 - q];
+    Vec3 p;
+    p[k] = bp.offset;
+    p[k1] = cc[0];
+    p[k2] = cc[1];
+    s->push(p);
+  }
+  int reaching = 0;
+  for (int f = 0; f < P.nFaces && s->n > 0; ++f) {
+    double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin;
+    for (int i = P.faceStart[f]; i < P.faceStart[f + 1]; ++i) {
+      zmin = std::min(zmin, P.vertex[P.index[i]][k]);
+      zmax = std::max(zmax, P.vertex[P.index[i]][k]);
+    }
+    if (zmin > bp.offset || zmax < bp.offset) continue;
+    ++reaching;
+    clip(*s, P.normal[f], P.offset[f], *t);
+    std::swap(s, t);
+  }
+  if (reaching == 0) return;  // the plane misses P: no section
+  m.addFace(*s);
+}
+
 // P inside the box [lo, hi] (relative to the centre of mass). Every face of the result
 // is either a face of P clipped by the box or a face of the box clipped by P; their
 // signed tetrahedra with the origin give volume and moment. The box is first shrunk by
@@ -237,81 +323,10 @@ SubmergedPart clipPolyhedron(const Polyhedron& P, const Vec3& X, const Vec3& lo0
                      (X.cwiseAbs().maxCoeff() + P.radius);
   const Vec3 lo = (lo0.array() + eps).matrix();
   const Vec3 hi = (hi0.array() - eps).matrix();
-  BoxPlane active[6];
-  int nActive = 0;
-  for (int k = 0; k < 3; ++k) {
-    if (hi[k] < P.radius) active[nActive++] = {k, 1.0, hi[k]};
-    if (lo[k] > -P.radius) active[nActive++] = {k, -1.0, lo[k]};
-  }
+  const CuttingPlanes box = planesCutting(P, lo, hi);
   Moments m;
-  // Faces of P clipped by the box. Most faces are wholly inside or wholly outside one of
-  // the planes: they are taken or dropped without clipping.
-  Polygon<kMaxFace> faceA, faceB;
-  for (int f = 0; f < P.nFaces; ++f) {
-    const int begin = P.faceStart[f], end = P.faceStart[f + 1];
-    int cutting[6];
-    int nCutting = 0;
-    bool dropped = false;
-    for (int c = 0; c < nActive && !dropped; ++c) {
-      const BoxPlane& bp = active[c];
-      int out = 0;
-      for (int i = begin; i < end; ++i)
-        out += bp.sign * (P.vertex[P.index[i]][bp.axis] - bp.offset) > 0.0;
-      if (out == end - begin) dropped = true;
-      else if (out > 0) cutting[nCutting++] = c;
-    }
-    if (dropped) continue;
-    Polygon<kMaxFace>* a = &faceA;
-    Polygon<kMaxFace>* b = &faceB;
-    a->n = 0;
-    for (int i = begin; i < end; ++i) a->push(P.vertex[P.index[i]]);
-    for (int c = 0; c < nCutting && a->n > 0; ++c) {
-      const BoxPlane& bp = active[cutting[c]];
-      clip(*a, bp.sign * Vec3::Unit(bp.axis), bp.sign * bp.offset, *b);
-      std::swap(a, b);
-    }
-    m.addFace(*a);
-  }
-  // Faces of the box clipped by P: a rectangle bounded by the box in the other two axes
-  // (and by P's bounding cube, to keep the numbers small). Only the faces of P that
-  // reach the plane bound the section P makes in it (a convex polygon is the
-  // intersection of its edges' half-planes); the others are skipped. A plane that no face
-// reaches misses P.
-  Polygon<kMaxSection> sectionA, sectionB;
-  const double big = 2.0 * P.radius;
-  for (int c = 0; c < nActive; ++c) {
-    const BoxPlane& bp = active[c];
-    const int k = bp.axis, k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-    const double l1 = std::max(lo[k1], -big), h1 = std::min(hi[k1], big);
-    const double l2 = std::max(lo[k2], -big), h2 = std::min(hi[k2], big);
-    if (!(l1 < h1 && l2 < h2)) continue;
-    const double corners[4][2] = {{l1, l2}, {h1, l2}, {h1, h2}, {l1, h2}};
-    Polygon<kMaxSection>* s = &sectionA;
-    Polygon<kMaxSection>* t = &sectionB;
-    s->n = 0;
-    for (int q = 0; q < 4; ++q) {
-      const double(&cc)[2] = corners[bp.sign > 0 ? q : 3 - q];
-      Vec3 p;
-      p[k] = bp.offset;
-      p[k1] = cc[0];
-      p[k2] = cc[1];
-      s->push(p);
-    }
-    int reaching = 0;
-    for (int f = 0; f < P.nFaces && s->n > 0; ++f) {
-      double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin;
-      for (int i = P.faceStart[f]; i < P.faceStart[f + 1]; ++i) {
-        zmin = std::min(zmin, P.vertex[P.index[i]][k]);
-        zmax = std::max(zmax, P.vertex[P.index[i]][k]);
-      }
-      if (zmin > bp.offset || zmax < bp.offset) continue;
-      ++reaching;
-      clip(*s, P.normal[f], P.offset[f], *t);
-      std::swap(s, t);
-    }
-    if (reaching == 0) continue;  // the plane misses P: no section
-    m.addFace(*s);
-  }
+  addFacesInBox(P, box, m);
+  for (int c = 0; c < box.n; ++c) addBoxSection(P, box.plane[c], lo, hi, m);
   SubmergedPart part;
   part.volume = m.volume;
   part.centroid = X + (m.volume > 0.0 ? Vec3(m.moment / m.volume) : Vec3::Zero());

@@ -281,6 +281,22 @@ fmi2Status Instance::noVariablesOfType(const char* function, const fmi2ValueRefe
 
 fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h, bool returnEarlyAtImpact) {
   returnedEarly_ = false;
+  if (const fmi2Status s = checkStep(tc, h); s != fmi2OK) return s;
+  rigid::clearContactLoads(data_);  // the contact loads are this step's
+  const Interval run = advance(h, true, returnEarlyAtImpact);
+  lastStepSize_ = run.impactAt >= 0.0 ? run.impactAt : h;
+  if (!run.result.ok) return discardStep(tc, run);
+  if (run.impactAt >= 0.0) {
+    returnedEarly_ = true;
+    time_ = lastSuccessfulTime_ = tc + run.impactAt;
+    log(fmi2OK, "logEvents", "fmi3DoStep: returned early at the impact at t = " + num(time_) + " s");
+    return fmi2OK;
+  }
+  time_ = lastSuccessfulTime_ = tc + h;
+  return fmi2OK;
+}
+
+fmi2Status Instance::checkStep(fmi2Real tc, fmi2Real h) const {
   if (!std::isfinite(tc)) return error("fmi2DoStep: currentCommunicationPoint must be finite, got " + num(tc));
   if (!std::isfinite(h) || h <= 0.0)
     return error("fmi2DoStep: communicationStepSize must be > 0 and finite, got " + num(h));
@@ -295,57 +311,52 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h, bool returnEarlyAtImpact) {
   if (ratio > 1e12)
     return error("fmi2DoStep: communicationStepSize " + num(h) + " s needs more than 1e12 steps of solver.step = " +
                  num(model_.maxStep) + " s");
-  rigid::clearContactLoads(data_);  // the contact loads are this step's
-  const Interval run = advance(h, true, returnEarlyAtImpact);
-  lastStepSize_ = run.impactAt >= 0.0 ? run.impactAt : h;
-  if (!run.result.ok) {
-    const rigid::StepResult& r = run.result;
-    const double from = run.from, to = run.to;
-    time_ = lastSuccessfulTime_ = tc + from;
-    state_ = kStepFailed;
-    wantsToTerminate_ = true;
-    const std::string cause =
-        r.cause == rigid::kEnergyGain
-            ? "body " + model_.bodies[r.body].name + ", turning free of torques, has gained " +
-                  num(r.energyGain) + " of its rotational energy, beyond solver.energyGainLimit = " +
-                  num(model_.energyGainLimit) + ": method " + rigid::methodName(model_.method) +
-                  " adds energy to a free rotation (about (h |omega|)^2 a step); the methods "
-                  "splitting, symplecticEuler, rk4 or lieRk4 keep it, or a solver.step of " +
-                  num(r.stableStep) + " s would have kept it within half the limit so far;"
-        : r.body >= 0 ? "the state of body " + model_.bodies[r.body].name +
-                          " is not finite or beyond 1e12 m"
-        : r.cause == "fast body"
-            ? "a body moves so fast that the internal step of " + num(to - from) +
-                  " s would need more than 1e4 collision sub-steps; a solver.step of " +
-                  num(r.stableStep) + " s would work"
-        : !r.cause.empty()
-            ? std::string("method ") + rigid::methodName(model_.method) +
-                  " is outside its stability region (" + r.cause + ")" +
-                  (r.stableStep > 0.0
-                       ? ": the internal step of " + num(to - from) +
-                             " s would need more than 1e6 sub-steps; a solver.step of " +
-                             num(r.stableStep) + " s, or the method rosenbrock or dopri5, would work"
-                       : ": it grows on every oscillation at any step; the methods rk4, "
-                         "symplecticEuler, splitting or rosenbrock would work")
-            : "the adaptive method could not meet solver.tolerance = " + num(model_.tolerance) +
-                  " (its step fell below 1e-14 of the step; raise the tolerance)";
-    const std::string hint =
-        r.body >= 0 && r.cause.empty() ? " (inputs or parameters out of range, e.g. " + model_.bodies[r.body].name + ".force)"
-                    : "";
-    log(fmi2Discard, "logStatusDiscard",
-        "fmi2DoStep: " + cause + " after the internal step from t = " + num(tc + from) + " to " +
-            num(tc + to) + " s" + hint + "; the FMU stays at t = " + num(time_) +
-            " s and must be reset or terminated");
-    return fmi2Discard;
-  }
-  if (run.impactAt >= 0.0) {
-    returnedEarly_ = true;
-    time_ = lastSuccessfulTime_ = tc + run.impactAt;
-    log(fmi2OK, "logEvents", "fmi3DoStep: returned early at the impact at t = " + num(time_) + " s");
-    return fmi2OK;
-  }
-  time_ = lastSuccessfulTime_ = tc + h;
   return fmi2OK;
+}
+
+fmi2Status Instance::discardStep(fmi2Real tc, const Interval& run) {
+  const rigid::StepResult& r = run.result;
+  time_ = lastSuccessfulTime_ = tc + run.from;
+  state_ = kStepFailed;
+  wantsToTerminate_ = true;
+  const std::string hint =
+      r.body >= 0 && r.cause.empty()
+          ? " (inputs or parameters out of range, e.g. " + model_.bodies[r.body].name + ".force)"
+          : "";
+  log(fmi2Discard, "logStatusDiscard",
+      "fmi2DoStep: " + stepFailure(r, run.to - run.from) + " after the internal step from t = " +
+          num(tc + run.from) + " to " + num(tc + run.to) + " s" + hint + "; the FMU stays at t = " +
+          num(time_) + " s and must be reset or terminated");
+  return fmi2Discard;
+}
+
+std::string Instance::stepFailure(const rigid::StepResult& r, double internalStep) const {
+  if (r.cause == rigid::kEnergyGain)
+    return "body " + model_.bodies[r.body].name + ", turning free of torques, has gained " +
+           num(r.energyGain) + " of its rotational energy, beyond solver.energyGainLimit = " +
+           num(model_.energyGainLimit) + ": method " + rigid::methodName(model_.method) +
+           " adds energy to a free rotation (about (h |omega|)^2 a step); the methods "
+           "splitting, symplecticEuler, rk4 or lieRk4 keep it, or a solver.step of " +
+           num(r.stableStep) + " s would have kept it within half the limit so far;";
+  if (r.body >= 0) return "the state of body " + model_.bodies[r.body].name + " is not finite or beyond 1e12 m";
+  if (r.cause == "fast body")
+    return "a body moves so fast that the internal step of " + num(internalStep) +
+           " s would need more than 1e4 collision sub-steps; a solver.step of " + num(r.stableStep) +
+           " s would work";
+  if (r.cause.empty())
+    return "the adaptive method could not meet solver.tolerance = " + num(model_.tolerance) +
+           " (its step fell below 1e-14 of the step; raise the tolerance)";
+  // An explicit method outside its stability region: sub-stepping would need too many
+  // steps, or (a stableStep of 0) no step is small enough.
+  const std::string unstable = std::string("method ") + rigid::methodName(model_.method) +
+                               " is outside its stability region (" + r.cause + ")";
+  if (r.stableStep > 0.0)
+    return unstable + ": the internal step of " + num(internalStep) +
+           " s would need more than 1e6 sub-steps; a solver.step of " + num(r.stableStep) +
+           " s, or the method rosenbrock or dopri5, would work";
+  return unstable +
+         ": it grows on every oscillation at any step; the methods rk4, symplecticEuler, splitting or "
+         "rosenbrock would work";
 }
 
 Instance::Interval Instance::advance(double h, bool report, bool stopAtImpact) {

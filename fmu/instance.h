@@ -115,6 +115,14 @@ class Instance {
     double impactAt = -1.0;       // s from the start: where an early return stopped
   };
   Interval advance(double h, bool report, bool stopAtImpact = false);
+  // fmi2DoStep's arguments and the parameters set since the last step: fmi2OK, or
+  // the error logged that names the argument or parameter and its limit.
+  fmi2Status checkStep(fmi2Real tc, fmi2Real h) const;
+  // A failed internal step of the communication step from tc: the FMU stays at the
+  // last internal step it completed, in StepFailed; logs why and returns fmi2Discard.
+  fmi2Status discardStep(fmi2Real tc, const Interval& run);
+  // Why an internal step of that length failed, and what would have worked.
+  std::string stepFailure(const rigid::StepResult& r, double internalStep) const;
   // Logs when the sub-stepping of the internal steps starts, changes or stops.
   void noteSubsteps(const rigid::StepResult& r, double h);
 

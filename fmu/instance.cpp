@@ -6,8 +6,8 @@
 
 #include "dynamics.h"
 #include "guid.h"
-#include "modules.h"
 #include "model_description_xml.h"
+#include "modules.h"
 #include "resource_location.h"
 
 namespace rigidfmu {
@@ -44,20 +44,18 @@ std::string escapePercent(const std::string& s) {
 
 }  // namespace
 
-Instance* Instance::create(fmi2String instanceName, int type, fmi2String guid,
-                           fmi2String resourceLocation, const fmi2CallbackFunctions* functions,
-                           fmi2Boolean loggingOn, const char* function) {
+Instance* Instance::create(fmi2String instanceName, int type, fmi2String guid, fmi2String resourceLocation,
+                           const fmi2CallbackFunctions* functions, fmi2Boolean loggingOn, const char* function) {
   if (!functions) return nullptr;  // nowhere to report to; the standard requires them
   const std::string name = instanceName ? instanceName : "";
   auto refuse = [&](const std::string& why) -> Instance* {
     if (functions->logger)
-      functions->logger(functions->componentEnvironment, name.c_str(), fmi2Error,
-                        "logStatusError", escapePercent(std::string(function) + ": " + why).c_str());
+      functions->logger(functions->componentEnvironment, name.c_str(), fmi2Error, "logStatusError",
+                        escapePercent(std::string(function) + ": " + why).c_str());
     return nullptr;
   };
   if (name.empty()) return refuse("instanceName must be a non-empty string");
-  if (type != fmi2CoSimulation)
-    return refuse("this FMU implements Co-Simulation only (fmuType = fmi2CoSimulation)");
+  if (type != fmi2CoSimulation) return refuse("this FMU implements Co-Simulation only (fmuType = fmi2CoSimulation)");
   std::string why;
   const auto dir = resourceDirectory(resourceLocation, why);
   if (!dir) return refuse(why);
@@ -73,15 +71,14 @@ Instance* Instance::create(fmi2String instanceName, int type, fmi2String guid,
                   " module(s), which this binary was built without; rebuild the FMU with build_fmu.sh");
   const std::string expected = sceneGuid(scene);
   if (!guid || expected != guid)
-    return refuse("GUID " + std::string(guid ? guid : "(null)") +
-                  " does not match this FMU's scene, whose GUID is " + expected);
+    return refuse("GUID " + std::string(guid ? guid : "(null)") + " does not match this FMU's scene, whose GUID is " +
+                  expected);
   Instance* instance = new Instance(name, *functions, loggingOn == fmi2True, std::move(scene));
   instance->guid_ = expected;
   return instance;
 }
 
-Instance::Instance(std::string name, const fmi2CallbackFunctions& functions, bool loggingOn,
-                   rigid::Scene scene)
+Instance::Instance(std::string name, const fmi2CallbackFunctions& functions, bool loggingOn, rigid::Scene scene)
     : name_(std::move(name)),
       functions_(functions),
       loggingOn_(loggingOn),
@@ -89,8 +86,8 @@ Instance::Instance(std::string name, const fmi2CallbackFunctions& functions, boo
       vars_(modelVariables(scene_)) {
   for (int i = 0; i < kLogCategoryCount; ++i) categories_.insert(kLogCategories[i].name);
   restart();
-  log(fmi2OK, "logEvents", "instantiated scene " + scene_.model.name + " with " +
-                               std::to_string(model_.bodies.size()) + " bodies");
+  log(fmi2OK, "logEvents",
+      "instantiated scene " + scene_.model.name + " with " + std::to_string(model_.bodies.size()) + " bodies");
 }
 
 void Instance::restart() {
@@ -104,11 +101,9 @@ void Instance::restart() {
 
 void Instance::log(fmi2Status status, const char* category, const std::string& message) const {
   if (!functions_.logger) return;
-  const bool always = status == fmi2Warning || status == fmi2Discard || status == fmi2Error ||
-                      status == fmi2Fatal;
+  const bool always = status == fmi2Warning || status == fmi2Discard || status == fmi2Error || status == fmi2Fatal;
   if (!always && !(loggingOn_ && categories_.count(category))) return;
-  functions_.logger(functions_.componentEnvironment, name_.c_str(), status, category,
-                    escapePercent(message).c_str());
+  functions_.logger(functions_.componentEnvironment, name_.c_str(), status, category, escapePercent(message).c_str());
 }
 
 fmi2Status Instance::error(const std::string& message) const {
@@ -125,8 +120,7 @@ bool Instance::allowedIn(unsigned allowed, const char* function) {
   return false;
 }
 
-fmi2Status Instance::setDebugLogging(fmi2Boolean loggingOn, size_t n,
-                                     const fmi2String categories[]) {
+fmi2Status Instance::setDebugLogging(fmi2Boolean loggingOn, size_t n, const fmi2String categories[]) {
   loggingOn_ = loggingOn == fmi2True;
   if (n == 0) return fmi2OK;  // all categories keep their setting
   if (!categories) return error("fmi2SetDebugLogging: categories is NULL with nCategories > 0");
@@ -142,12 +136,11 @@ fmi2Status Instance::setDebugLogging(fmi2Boolean loggingOn, size_t n,
   return fmi2OK;
 }
 
-fmi2Status Instance::setupExperiment(fmi2Boolean toleranceDefined, fmi2Real tolerance,
-                                     fmi2Real startTime, fmi2Boolean, fmi2Real) {
+fmi2Status Instance::setupExperiment(fmi2Boolean toleranceDefined, fmi2Real tolerance, fmi2Real startTime, fmi2Boolean,
+                                     fmi2Real) {
   if (!std::isfinite(startTime)) return error("fmi2SetupExperiment: startTime must be finite, got " + num(startTime));
   if (toleranceDefined)
-    log(fmi2OK, "logEvents", "tolerance " + num(tolerance) +
-                                 " noted; the fixed-step methods use solver.step instead");
+    log(fmi2OK, "logEvents", "tolerance " + num(tolerance) + " noted; the fixed-step methods use solver.step instead");
   startTime_ = time_ = lastSuccessfulTime_ = startTime;
   return fmi2OK;
 }
@@ -159,14 +152,14 @@ fmi2Status Instance::enterInitializationMode() {
 
 fmi2Status Instance::exitInitializationMode() {
   for (const rigid::BodyConstants& b : model_.bodies)
-    if (b.start.orientation.norm() < 1e-12)
-      return error(b.name + ".orientation: must not be the zero quaternion");
+    if (b.start.orientation.norm() < 1e-12) return error(b.name + ".orientation: must not be the zero quaternion");
   if (const std::string why = frictionConflict(model_); !why.empty()) return error(why);
   data_ = rigid::initialData(model_);
   time_ = lastSuccessfulTime_ = startTime_;
   state_ = kStepComplete;
-  log(fmi2OK, "logEvents", "initialised at t = " + num(time_) + " with method " +
-                               rigid::methodName(model_.method) + ", step " + num(model_.maxStep) + " s");
+  log(fmi2OK, "logEvents",
+      "initialised at t = " + num(time_) + " with method " + rigid::methodName(model_.method) + ", step " +
+          num(model_.maxStep) + " s");
   return fmi2OK;
 }
 
@@ -183,14 +176,15 @@ fmi2Status Instance::reset() {
 
 const Variable* Instance::lookup(const char* function, fmi2ValueReference vr, bool integer) const {
   if (vr >= vars_.size()) {
-    error(std::string(function) + ": unknown value reference " + std::to_string(vr) +
-          " (this FMU has 0.." + std::to_string(vars_.size() - 1) + ")");
+    error(std::string(function) + ": unknown value reference " + std::to_string(vr) + " (this FMU has 0.." +
+          std::to_string(vars_.size() - 1) + ")");
     return nullptr;
   }
   const Variable& v = vars_[vr];
   if ((v.type != BaseType::Real) != integer) {
-    error(std::string(function) + ": value reference " + std::to_string(vr) + " (" + v.name +
-          ") is " + (v.type == BaseType::Real ? "a Real, use fmi2Get/SetReal" : "an Integer or Enumeration, use fmi2Get/SetInteger"));
+    error(std::string(function) + ": value reference " + std::to_string(vr) + " (" + v.name + ") is " +
+          (v.type == BaseType::Real ? "a Real, use fmi2Get/SetReal"
+                                    : "an Integer or Enumeration, use fmi2Get/SetInteger"));
     return nullptr;
   }
   return &v;
@@ -209,16 +203,14 @@ bool Instance::writable(const Variable& v) const {
           (v.causality == Causality::Output ? "output, initial calculated" : "independent") + ")");
     return false;
   }
-  if (input || (v.causality == Causality::Parameter && v.variability == Variability::Tunable))
-    return true;
+  if (input || (v.causality == Causality::Parameter && v.variability == Variability::Tunable)) return true;
   error(v.name + ": only inputs and tunable parameters can be set after initialisation");
   return false;
 }
 
 fmi2Status Instance::write(const Variable& v, double value) {
   if (!writable(v)) return fmi2Error;
-  const std::string why =
-      writeValue(v, value, model_, data_, setupPhase() ? Phase::Setup : Phase::Running);
+  const std::string why = writeValue(v, value, model_, data_, setupPhase() ? Phase::Setup : Phase::Running);
   if (!why.empty()) return error(why);
   // A change of tunable parameter between steps moves the auxiliaries' inputs only;
   // mass-dependent outputs are refreshed so that a Get sees the new values. Sleeping
@@ -271,12 +263,10 @@ fmi2Status Instance::setInteger(const fmi2ValueReference vr[], size_t n, const f
   return fmi2OK;
 }
 
-fmi2Status Instance::noVariablesOfType(const char* function, const fmi2ValueReference vr[],
-                                       size_t n) {
+fmi2Status Instance::noVariablesOfType(const char* function, const fmi2ValueReference vr[], size_t n) {
   if (n == 0) return fmi2OK;
   return error(std::string(function) + ": unknown value reference " +
-               (vr ? std::to_string(vr[0]) : std::string("(NULL)")) +
-               " (this FMU has no variables of this type)");
+               (vr ? std::to_string(vr[0]) : std::string("(NULL)")) + " (this FMU has no variables of this type)");
 }
 
 fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h, bool returnEarlyAtImpact) {
@@ -303,14 +293,14 @@ fmi2Status Instance::checkStep(fmi2Real tc, fmi2Real h) const {
   // Masters that accumulate time send points that jitter by a few ulps: accept them.
   const double tolerance = 1e-9 * std::max(1.0, std::abs(time_));
   if (std::abs(tc - time_) > tolerance)
-    return error("fmi2DoStep: currentCommunicationPoint " + num(tc) +
-                 " is not the FMU's time " + num(time_) + " (tolerance " + num(tolerance) + ")");
+    return error("fmi2DoStep: currentCommunicationPoint " + num(tc) + " is not the FMU's time " + num(time_) +
+                 " (tolerance " + num(tolerance) + ")");
   // friction set since the last step: mu_k <= mu_s, checked now that both are set
   if (const std::string why = frictionConflict(model_); !why.empty()) return error("fmi2DoStep: " + why);
   const double ratio = h / model_.maxStep;
   if (ratio > 1e12)
-    return error("fmi2DoStep: communicationStepSize " + num(h) + " s needs more than 1e12 steps of solver.step = " +
-                 num(model_.maxStep) + " s");
+    return error("fmi2DoStep: communicationStepSize " + num(h) +
+                 " s needs more than 1e12 steps of solver.step = " + num(model_.maxStep) + " s");
   return fmi2OK;
 }
 
@@ -319,37 +309,35 @@ fmi2Status Instance::discardStep(fmi2Real tc, const Interval& run) {
   time_ = lastSuccessfulTime_ = tc + run.from;
   state_ = kStepFailed;
   wantsToTerminate_ = true;
-  const std::string hint =
-      r.body >= 0 && r.cause.empty()
-          ? " (inputs or parameters out of range, e.g. " + model_.bodies[r.body].name + ".force)"
-          : "";
+  const std::string hint = r.body >= 0 && r.cause.empty()
+                               ? " (inputs or parameters out of range, e.g. " + model_.bodies[r.body].name + ".force)"
+                               : "";
   log(fmi2Discard, "logStatusDiscard",
-      "fmi2DoStep: " + stepFailure(r, run.to - run.from) + " after the internal step from t = " +
-          num(tc + run.from) + " to " + num(tc + run.to) + " s" + hint + "; the FMU stays at t = " +
-          num(time_) + " s and must be reset or terminated");
+      "fmi2DoStep: " + stepFailure(r, run.to - run.from) + " after the internal step from t = " + num(tc + run.from) +
+          " to " + num(tc + run.to) + " s" + hint + "; the FMU stays at t = " + num(time_) +
+          " s and must be reset or terminated");
   return fmi2Discard;
 }
 
 std::string Instance::stepFailure(const rigid::StepResult& r, double internalStep) const {
   if (r.cause == rigid::kEnergyGain)
-    return "body " + model_.bodies[r.body].name + ", turning free of torques, has gained " +
-           num(r.energyGain) + " of its rotational energy, beyond solver.energyGainLimit = " +
-           num(model_.energyGainLimit) + ": method " + rigid::methodName(model_.method) +
+    return "body " + model_.bodies[r.body].name + ", turning free of torques, has gained " + num(r.energyGain) +
+           " of its rotational energy, beyond solver.energyGainLimit = " + num(model_.energyGainLimit) + ": method " +
+           rigid::methodName(model_.method) +
            " adds energy to a free rotation (about (h |omega|)^2 a step); the methods "
            "splitting, symplecticEuler, rk4 or lieRk4 keep it, or a solver.step of " +
            num(r.stableStep) + " s would have kept it within half the limit so far;";
   if (r.body >= 0) return "the state of body " + model_.bodies[r.body].name + " is not finite or beyond 1e12 m";
   if (r.cause == "fast body")
     return "a body moves so fast that the internal step of " + num(internalStep) +
-           " s would need more than 1e4 collision sub-steps; a solver.step of " + num(r.stableStep) +
-           " s would work";
+           " s would need more than 1e4 collision sub-steps; a solver.step of " + num(r.stableStep) + " s would work";
   if (r.cause.empty())
     return "the adaptive method could not meet solver.tolerance = " + num(model_.tolerance) +
            " (its step fell below 1e-14 of the step; raise the tolerance)";
   // An explicit method outside its stability region: sub-stepping would need too many
   // steps, or (a stableStep of 0) no step is small enough.
-  const std::string unstable = std::string("method ") + rigid::methodName(model_.method) +
-                               " is outside its stability region (" + r.cause + ")";
+  const std::string unstable =
+      std::string("method ") + rigid::methodName(model_.method) + " is outside its stability region (" + r.cause + ")";
   if (r.stableStep > 0.0)
     return unstable + ": the internal step of " + num(internalStep) +
            " s would need more than 1e6 sub-steps; a solver.step of " + num(r.stableStep) +
@@ -395,8 +383,8 @@ Instance::Interval Instance::advance(double h, bool report, bool stopAtImpact) {
 }
 
 fmi2Status Instance::getDirectionalDerivative(const fmi2ValueReference unknown[], size_t nUnknown,
-                                              const fmi2ValueReference known[], size_t nKnown,
-                                              const fmi2Real dvKnown[], fmi2Real dvUnknown[]) {
+                                              const fmi2ValueReference known[], size_t nKnown, const fmi2Real dvKnown[],
+                                              fmi2Real dvUnknown[]) {
   const char* fn = "fmi2GetDirectionalDerivative";
   if ((nUnknown && (!unknown || !dvUnknown)) || (nKnown && (!known || !dvKnown)))
     return error(std::string(fn) + ": an array is NULL");
@@ -530,8 +518,7 @@ fmi2Status Instance::deserializeState(const fmi2Byte bytes[], size_t size, fmi2F
   if (!why.empty()) return error("fmi2DeSerializeFMUstate: " + why);
   const unsigned known = kInstantiated | kInitializationMode | kStepComplete | kStepFailed | kTerminated | kError;
   if (__builtin_popcount(s.machineState) != 1 || !(s.machineState & known))
-    return error("fmi2DeSerializeFMUstate: the state holds an unknown machine state " +
-                 std::to_string(s.machineState));
+    return error("fmi2DeSerializeFMUstate: the state holds an unknown machine state " + std::to_string(s.machineState));
   Snapshot* target = static_cast<Snapshot*>(*state);
   if (target && !states_.count(target))
     return error("fmi2DeSerializeFMUstate: *FMUstate is not a state of this instance");
@@ -545,17 +532,18 @@ fmi2Status Instance::deserializeState(const fmi2Byte bytes[], size_t size, fmi2F
   return fmi2OK;
 }
 
-fmi2Status Instance::setInputDerivatives(const fmi2ValueReference vr[], size_t n,
-                                         const fmi2Integer order[], const fmi2Real value[]) {
+fmi2Status Instance::setInputDerivatives(const fmi2ValueReference vr[], size_t n, const fmi2Integer order[],
+                                         const fmi2Real value[]) {
   if (n && (!vr || !order || !value)) return error("fmi2SetRealInputDerivatives: an array is NULL");
   for (size_t i = 0; i < n; ++i) {
     const Variable* v = lookup("fmi2SetRealInputDerivatives", vr[i], false);
     if (!v) return fmi2Error;
-    if (v->causality != Causality::Input)
-      return error("fmi2SetRealInputDerivatives: " + v->name + " is not an input");
+    if (v->causality != Causality::Input) return error("fmi2SetRealInputDerivatives: " + v->name + " is not an input");
     if (order[i] != 1)
-      return error("fmi2SetRealInputDerivatives: " + v->name + ": only first-order derivatives "
-                   "(order 1) are interpolated, got order " + std::to_string(order[i]));
+      return error("fmi2SetRealInputDerivatives: " + v->name +
+                   ": only first-order derivatives "
+                   "(order 1) are interpolated, got order " +
+                   std::to_string(order[i]));
     if (!std::isfinite(value[i]))
       return error("fmi2SetRealInputDerivatives: " + v->name + ": must be finite, got " + num(value[i]));
     rigid::BodyInput& rate = data_.inputRate[v->body];
@@ -567,8 +555,8 @@ fmi2Status Instance::setInputDerivatives(const fmi2ValueReference vr[], size_t n
   return fmi2OK;
 }
 
-fmi2Status Instance::getOutputDerivatives(const fmi2ValueReference vr[], size_t n,
-                                          const fmi2Integer order[], fmi2Real value[]) {
+fmi2Status Instance::getOutputDerivatives(const fmi2ValueReference vr[], size_t n, const fmi2Integer order[],
+                                          fmi2Real value[]) {
   if (n && (!vr || !order || !value)) return error("fmi2GetRealOutputDerivatives: an array is NULL");
   // dY/dt at the current state and inputs: the same force stage as the integrators.
   std::vector<rigid::BodyAux> aux(data_.Y.size());
@@ -602,20 +590,16 @@ fmi2Status Instance::getOutputDerivatives(const fmi2ValueReference vr[], size_t 
 }
 
 void Instance::noteSubsteps(const rigid::StepResult& r, double h) {
-  const std::string note =
-      r.substeps > 1 ? r.cause + ":" + std::to_string(r.substeps) : std::string();
+  const std::string note = r.substeps > 1 ? r.cause + ":" + std::to_string(r.substeps) : std::string();
   if (note == substepNote_) return;
   substepNote_ = note;
-  const std::string why =
-      r.cause == "fast body"
-          ? std::string("a fast body could pass through what it can hit")
-          : std::string("method ") + rigid::methodName(model_.method) +
-                " is outside its stability region (" + r.cause + ")";
+  const std::string why = r.cause == "fast body" ? std::string("a fast body could pass through what it can hit")
+                                                 : std::string("method ") + rigid::methodName(model_.method) +
+                                                       " is outside its stability region (" + r.cause + ")";
   if (r.substeps > 1)
     log(fmi2Warning, "logStatusWarning",
         "fmi2DoStep: " + why + " at the internal step of " + num(h) + " s; sub-stepping it " +
-            std::to_string(r.substeps) + " times (steps of at most " + num(r.stableStep) +
-            " s; see solver.steps)");
+            std::to_string(r.substeps) + " times (steps of at most " + num(r.stableStep) + " s; see solver.steps)");
   else
     log(fmi2OK, "logEvents", "fmi2DoStep: no sub-stepping needed any more");
 }

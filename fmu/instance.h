@@ -32,9 +32,9 @@ class Instance {
   // through the callbacks' logger and returns nullptr.
   // `function` names the caller in those messages (fmi2Instantiate, or the FMI 3
   // adapter's fmi3InstantiateCoSimulation).
-  static Instance* create(fmi2String instanceName, int type, fmi2String guid,
-                          fmi2String resourceLocation, const fmi2CallbackFunctions* functions,
-                          fmi2Boolean loggingOn, const char* function = "fmi2Instantiate");
+  static Instance* create(fmi2String instanceName, int type, fmi2String guid, fmi2String resourceLocation,
+                          const fmi2CallbackFunctions* functions, fmi2Boolean loggingOn,
+                          const char* function = "fmi2Instantiate");
 
   // The scene's variables, in value-reference order (the FMI 3 adapter checks types).
   const std::vector<Variable>& variables() const { return vars_; }
@@ -66,15 +66,14 @@ class Instance {
 
   // Directional derivatives of outputs after the next step with respect to inputs.
   fmi2Status getDirectionalDerivative(const fmi2ValueReference unknown[], size_t nUnknown,
-                                      const fmi2ValueReference known[], size_t nKnown,
-                                      const fmi2Real dvKnown[], fmi2Real dvUnknown[]);
+                                      const fmi2ValueReference known[], size_t nKnown, const fmi2Real dvKnown[],
+                                      fmi2Real dvUnknown[]);
 
   // First-order input derivatives (canInterpolateInputs) and output derivatives
   // (MaxOutputDerivativeOrder = 1).
   fmi2Status setInputDerivatives(const fmi2ValueReference vr[], size_t n, const fmi2Integer order[],
                                  const fmi2Real value[]);
-  fmi2Status getOutputDerivatives(const fmi2ValueReference vr[], size_t n, const fmi2Integer order[],
-                                  fmi2Real value[]);
+  fmi2Status getOutputDerivatives(const fmi2ValueReference vr[], size_t n, const fmi2Integer order[], fmi2Real value[]);
 
   // FMU states: snapshots owned by this instance (freed with it).
   fmi2Status getState(fmi2FMUstate* state);
@@ -95,8 +94,7 @@ class Instance {
   void enterErrorState() { state_ = kError; }
 
  private:
-  Instance(std::string name, const fmi2CallbackFunctions& functions, bool loggingOn,
-           rigid::Scene scene);
+  Instance(std::string name, const fmi2CallbackFunctions& functions, bool loggingOn, rigid::Scene scene);
 
   void restart();  // the just-instantiated state
   // The variable behind vr if it exists and has the given type; logs otherwise.

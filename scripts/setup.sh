@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Installs everything rigidfmu needs on a fresh Debian machine: the Debian packages
-# (compiler, CMake, Eigen, FCL, nlohmann-json, GoogleTest, chromium for the replay's
-# browser test; MinGW-w64, dpkg-dev and a deb-src entry for the win64 binaries, which
-# scripts/win64_deps.sh builds from Debian's FCL and libccd sources, and wine64 to test
-# them), a Python venv (.venv) with the pinned packages of requirements.txt and
+# (compiler, CMake, Eigen, FCL, nlohmann-json, GoogleTest, clang-format for the style
+# test, chromium for the replay's browser test; MinGW-w64, dpkg-dev and a deb-src
+# entry for the win64 binaries, which scripts/win64_deps.sh builds from Debian's FCL
+# and libccd sources, and wine64 to test them), a Python venv (.venv) with the pinned packages of requirements.txt and
 # the replay page's npm packages (python/rigidfmu/replay/page/package-lock.json; Node.js and npm come
 # with the machine). Idempotent and quick when done.
 set -euo pipefail
@@ -11,7 +11,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
 debian_packages=(
   build-essential cmake python3-venv patchelf
-  libeigen3-dev libfcl-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
+  libeigen3-dev libfcl-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev clang-format
   chromium
   g++-mingw-w64-x86-64-posix dpkg-dev wine64
 )

@@ -8,8 +8,8 @@
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/collision_object.h>
-#include <fcl/narrowphase/distance.h>
 #include <fcl/narrowphase/detail/primitive_shape_algorithm/box_box.h>
+#include <fcl/narrowphase/distance.h>
 
 #include <algorithm>
 #include <cmath>
@@ -53,16 +53,13 @@ struct Geo {
 // Support function: max over the shape of d.x, for x relative to the centre.
 double supportExtent(const Geo& g, const Vec3& d) {
   switch (g.type) {
-    case ShapeType::Sphere:
-      return g.radius * d.norm();
-    case ShapeType::Box:
-      return (g.R.transpose() * d).cwiseAbs().dot(g.half);
+    case ShapeType::Sphere: return g.radius * d.norm();
+    case ShapeType::Box: return (g.R.transpose() * d).cwiseAbs().dot(g.half);
     case ShapeType::Cylinder: {
       const double du = g.R.col(2).dot(d);
       return g.halfLength * std::abs(du) + g.radius * std::sqrt(std::max(0.0, d.squaredNorm() - du * du));
     }
-    case ShapeType::Capsule:
-      return g.halfLength * std::abs(g.R.col(2).dot(d)) + g.radius * d.norm();
+    case ShapeType::Capsule: return g.halfLength * std::abs(g.R.col(2).dot(d)) + g.radius * d.norm();
   }
   return 0.0;
 }
@@ -70,10 +67,8 @@ double supportExtent(const Geo& g, const Vec3& d) {
 // Half extents of the tight world AABB of the shape.
 Vec3 aabbHalfExtent(const Geo& g) {
   switch (g.type) {
-    case ShapeType::Sphere:
-      return Vec3::Constant(g.radius);
-    case ShapeType::Box:
-      return g.R.cwiseAbs() * g.half;
+    case ShapeType::Sphere: return Vec3::Constant(g.radius);
+    case ShapeType::Box: return g.R.cwiseAbs() * g.half;
     case ShapeType::Cylinder: {
       const Vec3 u = g.R.col(2);
       Vec3 e;
@@ -81,8 +76,7 @@ Vec3 aabbHalfExtent(const Geo& g) {
         e[i] = g.halfLength * std::abs(u[i]) + g.radius * std::sqrt(std::max(0.0, 1.0 - u[i] * u[i]));
       return e;
     }
-    case ShapeType::Capsule:
-      return g.halfLength * g.R.col(2).cwiseAbs() + Vec3::Constant(g.radius);
+    case ShapeType::Capsule: return g.halfLength * g.R.col(2).cwiseAbs() + Vec3::Constant(g.radius);
   }
   return Vec3::Zero();
 }
@@ -91,8 +85,7 @@ Vec3 aabbHalfExtent(const Geo& g) {
 Vec3 supportPoint(const Geo& g, const Vec3& d) {
   const Vec3 dn = d.normalized();
   switch (g.type) {
-    case ShapeType::Sphere:
-      return g.p + g.radius * dn;
+    case ShapeType::Sphere: return g.p + g.radius * dn;
     case ShapeType::Box: {
       const Vec3 dl = g.R.transpose() * d;
       return g.p + g.R * Vec3(dl.x() >= 0 ? g.half.x() : -g.half.x(), dl.y() >= 0 ? g.half.y() : -g.half.y(),
@@ -140,8 +133,10 @@ bool clipSegment(Vec3* s, const Vec3& t, double e, const Vec3& o) {
   const double d0 = t.dot(s[0] - o) - e;
   const double d1 = t.dot(s[1] - o) - e;
   if (d0 > 0.0 && d1 > 0.0) return false;
-  if (d0 > 0.0) s[0] = s[0] + (s[1] - s[0]) * (d0 / (d0 - d1));
-  else if (d1 > 0.0) s[1] = s[1] + (s[0] - s[1]) * (d1 / (d1 - d0));
+  if (d0 > 0.0)
+    s[0] = s[0] + (s[1] - s[0]) * (d0 / (d0 - d1));
+  else if (d1 > 0.0)
+    s[1] = s[1] + (s[0] - s[1]) * (d1 / (d1 - d0));
   return true;
 }
 
@@ -164,8 +159,14 @@ int reducePatch(const Vec3* pts, const double* sep, int n, const Vec3& m, int* k
   double best2 = 0.0, best3 = 0.0;
   for (int i = 0; i < n; ++i) {
     const double s = m.dot(line.cross(pts[i] - pts[i0]));
-    if (s > best2) { best2 = s; i2 = i; }
-    if (s < best3) { best3 = s; i3 = i; }
+    if (s > best2) {
+      best2 = s;
+      i2 = i;
+    }
+    if (s < best3) {
+      best3 = s;
+      i3 = i;
+    }
   }
   int k = 0;
   keep[k++] = i0;
@@ -257,8 +258,7 @@ int incidentRoundFeature(const Geo& inc, const Vec3& m, Vec3* pts) {
   if (std::abs(c) <= kSideAlign) {
     // Lying on its side: the line of the side (cylinder) or of the caps' lowest
     // points (capsule).
-    const Vec3 off = inc.type == ShapeType::Cylinder ? Vec3(inc.radius * down.normalized())
-                                                      : Vec3(-inc.radius * m);
+    const Vec3 off = inc.type == ShapeType::Cylinder ? Vec3(inc.radius * down.normalized()) : Vec3(-inc.radius * m);
     pts[0] = inc.p - u * inc.halfLength + off;
     pts[1] = inc.p + u * inc.halfLength + off;
     return 2;
@@ -266,8 +266,7 @@ int incidentRoundFeature(const Geo& inc, const Vec3& m, Vec3* pts) {
   // Standing capsule or tilted cylinder: one point, the lowest of the end cap
   // (capsule) or of the end's rim (cylinder) nearer the face.
   const Vec3 end = inc.p + u * (c > 0.0 ? -inc.halfLength : inc.halfLength);
-  pts[0] = inc.type == ShapeType::Capsule ? Vec3(end - inc.radius * m)
-                                          : Vec3(end + inc.radius * down.normalized());
+  pts[0] = inc.type == ShapeType::Capsule ? Vec3(end - inc.radius * m) : Vec3(end + inc.radius * down.normalized());
   return 1;
 }
 
@@ -278,11 +277,9 @@ int incidentFeature(const Geo& inc, const Vec3& m, Vec3* pts) {
     case ShapeType::Sphere:
       pts[0] = inc.p - inc.radius * m;  // its lowest point on the face
       return 1;
-    case ShapeType::Box:
-      return incidentBoxFace(inc, m, pts);
+    case ShapeType::Box: return incidentBoxFace(inc, m, pts);
     case ShapeType::Cylinder:
-    case ShapeType::Capsule:
-      return incidentRoundFeature(inc, m, pts);
+    case ShapeType::Capsule: return incidentRoundFeature(inc, m, pts);
   }
   return 0;
 }
@@ -369,12 +366,18 @@ Vec3 touchingNormal(const Geo& A, const Geo& B) {
       if (B.type == ShapeType::Box) {  // m out of B: sep = min over A of m.x - max over B of m.x
         const Vec3 m = s * B.R.col(k);
         const double sep = m.dot(A.p - B.p) - supportExtent(A, -m) - supportExtent(B, m);
-        if (sep > best) { best = sep; n = -m; }
+        if (sep > best) {
+          best = sep;
+          n = -m;
+        }
       }
       if (A.type == ShapeType::Box) {
         const Vec3 m = s * A.R.col(k);
         const double sep = m.dot(B.p - A.p) - supportExtent(B, -m) - supportExtent(A, m);
-        if (sep > best) { best = sep; n = m; }
+        if (sep > best) {
+          best = sep;
+          n = m;
+        }
       }
     }
   }
@@ -401,7 +404,7 @@ double boxSeparation(const Geo& A, const Geo& B, Vec3& n, double enough, bool& f
   for (int i = 0; i < 3 && best < enough; ++i) {
     const double sepA = std::abs(t[i]) - a[i] - absC.row(i).dot(b);  // A's face normal i
     if (sepA > best) best = sepA, axis = t[i] >= 0.0 ? Vec3(A.R.col(i)) : Vec3(-A.R.col(i));
-    const double along = C.col(i).dot(t);                             // B's face normal i
+    const double along = C.col(i).dot(t);  // B's face normal i
     const double sepB = std::abs(along) - absC.col(i).dot(a) - b[i];
     if (sepB > best) best = sepB, axis = along >= 0.0 ? Vec3(B.R.col(i)) : Vec3(-B.R.col(i));
   }
@@ -440,10 +443,8 @@ double boxSeparation(const Geo& A, const Geo& B, Vec3& n, double enough, bool& f
 
 std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const Geo& g) {
   switch (g.type) {
-    case ShapeType::Sphere:
-      return std::make_shared<fcl::Sphered>(g.radius);
-    case ShapeType::Box:
-      return std::make_shared<fcl::Boxd>(2.0 * g.half);  // FCL takes full edge lengths
+    case ShapeType::Sphere: return std::make_shared<fcl::Sphered>(g.radius);
+    case ShapeType::Box: return std::make_shared<fcl::Boxd>(2.0 * g.half);  // FCL takes full edge lengths
     case ShapeType::Cylinder:
       return std::make_shared<fcl::Cylinderd>(g.radius, 2.0 * g.halfLength);  // axis z, total length
     case ShapeType::Capsule:
@@ -451,7 +452,6 @@ std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const Geo& g) {
   }
   return nullptr;
 }
-
 
 }  // namespace
 
@@ -479,11 +479,11 @@ struct CollisionDetector::Impl {
   // separating-axis test, so FCL's objects are placed only when a pair reaches FCL.
   std::vector<char> placed;
   SweepAndPrune broadphase;
-  std::vector<Vec3> lo, hi;           // scratch of detect(): each slot's bounding box
+  std::vector<Vec3> lo, hi;                      // scratch of detect(): each slot's bounding box
   std::vector<std::pair<int, int>> overlapping;  // scratch of detect(): slots whose boxes overlap
-  std::vector<Pair> pairs;            // scratch of detect()
-  std::vector<Pair> found;            // scratch of detect(): pairs in the sweep's order
-  std::vector<int> firstOf;           // scratch of detect(): where each body's pairs start
+  std::vector<Pair> pairs;                       // scratch of detect()
+  std::vector<Pair> found;                       // scratch of detect(): pairs in the sweep's order
+  std::vector<int> firstOf;                      // scratch of detect(): where each body's pairs start
   fcl::CollisionRequestd request;
   fcl::CollisionResultd result;
   fcl::DistanceRequestd distanceRequest;
@@ -506,8 +506,10 @@ struct CollisionDetector::Impl {
     if (isBody(s1) && isBody(s2) && !(meetsBodies[s1] && meetsBodies[s2])) return false;
     if (!isBody(s1) || (isBody(s2) && slotIndex[s2] < slotIndex[s1])) std::swap(s1, s2);
     p = Pair{slotIndex[s1], -1, -1, s1, s2};
-    if (isBody(s2)) p.b = slotIndex[s2];
-    else p.surface = slotIndex[s2];
+    if (isBody(s2))
+      p.b = slotIndex[s2];
+    else
+      p.surface = slotIndex[s2];
     return true;
   }
 
@@ -538,8 +540,8 @@ CollisionDetector::CollisionDetector(const WorldModel& model, const std::vector<
                                      const std::vector<bool>& meetsSurfaces)
     : impl_(std::make_unique<Impl>()) {
   if (collides.size() != model.bodies.size())
-    throw std::invalid_argument("CollisionDetector: collides has " + std::to_string(collides.size()) +
-                                " entries for " + std::to_string(model.bodies.size()) + " bodies");
+    throw std::invalid_argument("CollisionDetector: collides has " + std::to_string(collides.size()) + " entries for " +
+                                std::to_string(model.bodies.size()) + " bodies");
   if (!meetsSurfaces.empty() && meetsSurfaces.size() != model.bodies.size())
     throw std::invalid_argument("CollisionDetector: meetsSurfaces has " + std::to_string(meetsSurfaces.size()) +
                                 " entries for " + std::to_string(model.bodies.size()) + " bodies");
@@ -601,8 +603,8 @@ void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, s
     throw std::invalid_argument("CollisionDetector::detect: " + std::to_string(Y.size()) + " states for " +
                                 std::to_string(d.bodySlot.size()) + " bodies");
   if (asleep && asleep->size() != d.bodySlot.size())
-    throw std::invalid_argument("CollisionDetector::detect: " + std::to_string(asleep->size()) +
-                                " sleep flags for " + std::to_string(d.bodySlot.size()) + " bodies");
+    throw std::invalid_argument("CollisionDetector::detect: " + std::to_string(asleep->size()) + " sleep flags for " +
+                                std::to_string(d.bodySlot.size()) + " bodies");
   margin = std::max(margin, 0.0);
   speculative = std::max(speculative, margin);
   out.clear();
@@ -643,8 +645,7 @@ void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, s
   for (const Impl::Pair& p : d.pairs) d.narrowphase(p, margin, speculative, out);
   if (profile) {
     profile->broadphase += std::chrono::duration<double, std::nano>(broad - start).count();
-    profile->narrowphase +=
-        std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - broad).count();
+    profile->narrowphase += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - broad).count();
   }
 }
 
@@ -692,8 +693,7 @@ bool CollisionDetector::Impl::appendBoxesBySeparatingAxis(const Pair& pr, double
 }
 
 void CollisionDetector::Impl::appendApartBoxes(const Pair& pr, const Vec3& n, double separation, double margin,
-                                               double speculative, const Contact& proto,
-                                               std::vector<Contact>& out) {
+                                               double speculative, const Contact& proto, std::vector<Contact>& out) {
   const Geo& A = geo[pr.slotA];
   const Geo& B = geo[pr.slotB];
   if (separation < margin) {

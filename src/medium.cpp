@@ -58,8 +58,8 @@ void clip(const Polygon<N>& in, const Vec3& n, double d, Polygon<N>& out) {
 // Volume and first moment of a closed surface, from the signed tetrahedra that its
 // polygons span with the origin (the body's centre of mass).
 struct Moments {
-  double volume = 0.0;          // m^3
-  Vec3 moment = Vec3::Zero();   // m^4, integral of x dV
+  double volume = 0.0;         // m^3
+  Vec3 moment = Vec3::Zero();  // m^4, integral of x dV
   template <int N>
   void addFace(const Polygon<N>& p) {
     for (int i = 1; i + 1 < p.n; ++i) {
@@ -86,13 +86,11 @@ struct Polyhedron {
   std::array<int, kMaxIndices> index;
   std::array<int, kMaxFaces + 1> faceStart{};
   int nFaces = 0;
-  std::array<Vec3, kMaxFaces> normal;  // outward, not normalised
+  std::array<Vec3, kMaxFaces> normal;    // outward, not normalised
   std::array<double, kMaxFaces> offset;  // normal . x <= offset inside
-  double radius = 0.0;  // m, bounding sphere about the centre of mass
+  double radius = 0.0;                   // m, bounding sphere about the centre of mass
 
-  void addFace(std::initializer_list<int> ids) {
-    addFace(ids.begin(), static_cast<int>(ids.size()));
-  }
+  void addFace(std::initializer_list<int> ids) { addFace(ids.begin(), static_cast<int>(ids.size())); }
   void addFace(const int* ids, int n) {
     const int at = faceStart[nFaces];
     for (int i = 0; i < n; ++i) index[at + i] = ids[i];
@@ -128,7 +126,7 @@ void makeBox(const Vec3& size, const Mat3& R, Polyhedron& p) {
     for (int side = 0; side < 2; ++side) {
       int ids[4];
       for (int c = 0; c < 4; ++c) {
-        const int (&cc)[2] = corners[side == 1 ? c : 3 - c];
+        const int(&cc)[2] = corners[side == 1 ? c : 3 - c];
         ids[c] = (side << k) | (cc[0] << k1) | (cc[1] << k2);
       }
       p.addFace(ids, 4);
@@ -139,8 +137,7 @@ void makeBox(const Vec3& size, const Mat3& R, Polyhedron& p) {
 // A convex solid of revolution about body z, as a polyhedron with kLatheSides sides:
 // profile points (z_j, rho_j), z increasing; rho = 0 is a pole. Radii are scaled so that
 // the polyhedron's volume is the solid's (volume).
-void makeLathe(const double* z, const double* rho, int J, double volume, const Mat3& R,
-               Polyhedron& p) {
+void makeLathe(const double* z, const double* rho, int J, double volume, const Mat3& R, Polyhedron& p) {
   constexpr int N = kLatheSides;
   // cos and sin of the N corners' angles: a constant table, filled once.
   static const std::array<std::array<double, 2>, N> circle = [] {
@@ -149,10 +146,10 @@ void makeLathe(const double* z, const double* rho, int J, double volume, const M
     return c;
   }();
   const double k = 0.5 * N * std::sin(2.0 * kPi / N);  // N-gon area / rho^2
-  double v1 = 0.0;  // volume of the polyhedron at scale 1: frusta of similar N-gons
+  // The volume of the polyhedron at scale 1: frusta of similar N-gons.
+  double v1 = 0.0;
   for (int j = 0; j + 1 < J; ++j)
-    v1 += k * (z[j + 1] - z[j]) / 3.0 *
-          (rho[j] * rho[j] + rho[j + 1] * rho[j + 1] + rho[j] * rho[j + 1]);
+    v1 += k * (z[j + 1] - z[j]) / 3.0 * (rho[j] * rho[j] + rho[j + 1] * rho[j + 1] + rho[j] * rho[j + 1]);
   const double s = std::sqrt(volume / v1);
   // Vertex index of ring j, corner i; a pole has one vertex.
   std::array<int, kMaxProfile> first{};
@@ -250,10 +247,11 @@ void addFacesInBox(const Polyhedron& P, const CuttingPlanes& box, Moments& m) {
     for (int c = 0; c < box.n && !dropped; ++c) {
       const BoxPlane& bp = box.plane[c];
       int out = 0;
-      for (int i = begin; i < end; ++i)
-        out += bp.sign * (P.vertex[P.index[i]][bp.axis] - bp.offset) > 0.0;
-      if (out == end - begin) dropped = true;
-      else if (out > 0) cutting[nCutting++] = c;
+      for (int i = begin; i < end; ++i) out += bp.sign * (P.vertex[P.index[i]][bp.axis] - bp.offset) > 0.0;
+      if (out == end - begin)
+        dropped = true;
+      else if (out > 0)
+        cutting[nCutting++] = c;
     }
     if (dropped) continue;
     Polygon<kMaxFace>* a = &faceA;
@@ -315,12 +313,10 @@ void addBoxSection(const Polyhedron& P, const BoxPlane& bp, const Vec3& lo, cons
 // a margin eps above rounding, so that a face of P that lies exactly in a face of the
 // box (a box resting flush on the floor of a tank, a top flush with the surface) is
 // never counted twice nor half: the result is that of a box eps smaller on each side.
-SubmergedPart clipPolyhedron(const Polyhedron& P, const Vec3& X, const Vec3& lo0,
-                             const Vec3& hi0) {
+SubmergedPart clipPolyhedron(const Polyhedron& P, const Vec3& X, const Vec3& lo0, const Vec3& hi0) {
   // 64 ulps of the coordinates involved: above the rounding of R p and of min - X, far
   // below anything a scene resolves (1.4e-14 m for a body 1 m from the origin).
-  const double eps = 64.0 * std::numeric_limits<double>::epsilon() *
-                     (X.cwiseAbs().maxCoeff() + P.radius);
+  const double eps = 64.0 * std::numeric_limits<double>::epsilon() * (X.cwiseAbs().maxCoeff() + P.radius);
   const Vec3 lo = (lo0.array() + eps).matrix();
   const Vec3 hi = (hi0.array() - eps).matrix();
   const CuttingPlanes box = planesCutting(P, lo, hi);
@@ -421,14 +417,12 @@ double interpolate(const double (*table)[2], int n, double x) {
 // Drag, 1965, as tabulated in the Aeronautical Engineer Data Book, fig. 5.13):
 // axial flow on the end area pi r^2, by l/d (l/d = 0 is the flat disc, 1.17);
 double axialCd(double lOverD) {
-  static constexpr double table[][2] = {{0.0, 1.17}, {1.0, 0.91}, {2.0, 0.85}, {4.0, 0.87},
-                                        {7.0, 0.99}};
+  static constexpr double table[][2] = {{0.0, 1.17}, {1.0, 0.91}, {2.0, 0.85}, {4.0, 0.87}, {7.0, 0.99}};
   return interpolate(table, 5, lOverD);
 }
 // cross flow on the side area d l, by d/l (d/l = 0: the infinite cylinder, 1.20).
 double crossCd(double dOverL) {
-  static constexpr double table[][2] = {{0.0, 1.20}, {0.025, 0.98}, {0.1, 0.82}, {0.2, 0.74},
-                                        {0.5, 0.68}, {1.0, 0.63}};
+  static constexpr double table[][2] = {{0.0, 1.20}, {0.025, 0.98}, {0.1, 0.82}, {0.2, 0.74}, {0.5, 0.68}, {1.0, 0.63}};
   return interpolate(table, 6, dOverL);
 }
 
@@ -439,8 +433,8 @@ constexpr double kBoxCd = 1.05;     // cube face-on; on each face's projection
 
 // ---- public pieces ----------------------------------------------------------------------
 
-SubmergedPart submergedPart(const Shape& shape, const Vec3& X_W, const Mat3& R_WB,
-                            const Vec3& min_W, const Vec3& max_W) {
+SubmergedPart submergedPart(const Shape& shape, const Vec3& X_W, const Mat3& R_WB, const Vec3& min_W,
+                            const Vec3& max_W) {
   const Vec3 lo = min_W - X_W, hi = max_W - X_W;
   const double r = shape.radius, l = shape.length;
   // Bounding radius about the centre of mass (of the polyhedron, for cylinder and
@@ -480,8 +474,7 @@ double projectedArea(const Shape& shape, const Vec3& d) {
     case ShapeType::Sphere: return kPi * r * r;
     case ShapeType::Box: {
       const Vec3& s = shape.size;
-      return std::abs(d.x()) * s.y() * s.z() + std::abs(d.y()) * s.x() * s.z() +
-             std::abs(d.z()) * s.x() * s.y();
+      return std::abs(d.x()) * s.y() * s.z() + std::abs(d.y()) * s.x() * s.z() + std::abs(d.z()) * s.x() * s.y();
     }
     case ShapeType::Cylinder: return kPi * r * r * axial + 2.0 * r * l * side;
     case ShapeType::Capsule: return kPi * r * r + 2.0 * r * l * side;
@@ -511,8 +504,7 @@ double dragArea(const Shape& shape, const Vec3& d) {
     case ShapeType::Sphere: return kSphereCd * kPi * r * r;
     case ShapeType::Box: return kBoxCd * projectedArea(shape, d);
     case ShapeType::Cylinder:
-      return axialCd(l / (2.0 * r)) * kPi * r * r * axial +
-             crossCd(2.0 * r / std::max(l, 1e-300)) * 2.0 * r * l * side;
+      return axialCd(l / (2.0 * r)) * kPi * r * r * axial + crossCd(2.0 * r / std::max(l, 1e-300)) * 2.0 * r * l * side;
     case ShapeType::Capsule:
       return kSphereCd * kPi * r * r + crossCd(2.0 * r / std::max(l, 1e-300)) * 2.0 * r * l * side;
   }
@@ -520,7 +512,7 @@ double dragArea(const Shape& shape, const Vec3& d) {
 }
 
 double stokesFactor(const Shape& shape, const Vec3& d) {
-  const double rn = std::sqrt(projectedArea(shape, d) / kPi);  // projected-area radius
+  const double rn = std::sqrt(projectedArea(shape, d) / kPi);     // projected-area radius
   const double rs = std::sqrt(surfaceArea(shape) / (4.0 * kPi));  // surface-area radius
   return 6.0 * kPi * (rn / 3.0 + 2.0 * rs / 3.0);
 }
@@ -539,8 +531,7 @@ Vec3 pressureTorqueFactor(const Shape& shape) {
       // from the axis moving at omega s: 1/2 Cd l_k ((l_k1/2)^4 + (l_k2/2)^4).
       const Vec3 h4 = (0.5 * shape.size).array().pow(4.0).matrix();
       Vec3 k2;
-      for (int k = 0; k < 3; ++k)
-        k2[k] = 0.5 * kBoxCd * shape.size[k] * (h4[(k + 1) % 3] + h4[(k + 2) % 3]);
+      for (int k = 0; k < 3; ++k) k2[k] = 0.5 * kBoxCd * shape.size[k] * (h4[(k + 1) % 3] + h4[(k + 2) % 3]);
       return k2;
     }
     case ShapeType::Cylinder: {
@@ -561,8 +552,8 @@ Vec3 pressureTorqueFactor(const Shape& shape) {
 
 // ---- the force stage's medium term -------------------------------------------------------
 
-void addMediumForces(const Medium& medium, const BodyConstants& body, const BodyState& y,
-                     const Vec3& gravity, BodyAux& aux) {
+void addMediumForces(const Medium& medium, const BodyConstants& body, const BodyState& y, const Vec3& gravity,
+                     BodyAux& aux) {
   if (!(medium.density > 0.0) && !(medium.viscosity > 0.0)) return;
   const SubmergedPart part = submergedPart(body.shape, y.X, aux.R, medium.min, medium.max);
   if (!(part.volume > 0.0)) return;
@@ -590,8 +581,7 @@ void addMediumForces(const Medium& medium, const BodyConstants& body, const Body
   const double w = aux.omega.norm();
   if (w > 0.0) {
     const Vec3 w_B = aux.R.transpose() * aux.omega;
-    const Vec3 k = Vec3::Constant(mu * rotationalStokesFactor(body.shape)) +
-                   rho * w * pressureTorqueFactor(body.shape);
+    const Vec3 k = Vec3::Constant(mu * rotationalStokesFactor(body.shape)) + rho * w * pressureTorqueFactor(body.shape);
     aux.T -= fraction * (aux.R * k.cwiseProduct(w_B));
   }
 }
@@ -600,8 +590,8 @@ void addMediumForces(const Medium& medium, const BodyConstants& body, const Body
 
 namespace rigid {
 
-MediumRates mediumRates(const Medium& medium, const BodyConstants& body, const BodyState& y,
-                        const BodyAux& aux, const Vec3& gravity) {
+MediumRates mediumRates(const Medium& medium, const BodyConstants& body, const BodyState& y, const BodyAux& aux,
+                        const Vec3& gravity) {
   MediumRates rates;
   const SubmergedPart part = submergedPart(body.shape, y.X, aux.R, medium.min, medium.max);
   if (!(part.volume > 0.0)) return rates;
@@ -617,8 +607,8 @@ MediumRates mediumRates(const Medium& medium, const BodyConstants& body, const B
   }
   const double speed = aux.V.norm() + aux.omega.norm() * std::cbrt(volume);
   rates.damping = fraction * (mu * stokes + rho * area * speed) / body.mass;
-  const double angular = mu * rotationalStokesFactor(body.shape) +
-                         rho * aux.omega.norm() * pressureTorqueFactor(body.shape).maxCoeff();
+  const double angular =
+      mu * rotationalStokesFactor(body.shape) + rho * aux.omega.norm() * pressureTorqueFactor(body.shape).maxCoeff();
   rates.damping = std::max(rates.damping, fraction * angular / body.principalMoments.minCoeff());
   // Heave: buoyancy's restoring rate sqrt(rho |g| A_wp / m), with the waterplane area
   // A_wp = dV_sub/d(depth) by a central difference along gravity.

@@ -156,7 +156,8 @@ def parser() -> argparse.ArgumentParser:
                                      "\n".join(f"  {k:12s} {what}" for k, (_, what) in REPORTS.items()),
                          formatter_class=argparse.RawDescriptionHelpFormatter)
     rep.add_argument("kind", choices=REPORTS, metavar="KIND", help=", ".join(REPORTS))
-    rep.add_argument("args", nargs=argparse.REMAINDER, metavar="...", help="the report's options (--quick, --out DIR, ...)")
+    rep.add_argument("args", nargs=argparse.REMAINDER, metavar="...",
+                     help="the report's options (--quick, --out DIR, ...)")
     rep.set_defaults(run=cmd_report)
 
     st = sub.add_parser("study", help="run a parameter study of an FMU on Dask", add_help=False,

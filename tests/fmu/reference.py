@@ -7,8 +7,7 @@ from rigidfmu.references.quaternion import quat_mul
 
 def rotation_angle_between(q1, q2):
     """Angle (rad) of the rotation taking q2 to q1, for arrays of unit quaternions."""
-    d = np.abs(np.sum(np.asarray(q1) * np.asarray(q2), axis=-1))
-    # 2 acos(d) loses precision near d = 1: use 2 asin(|vector part of q2^-1 q1|).
+    # 2 acos(|q1 . q2|) loses precision near 1: use 2 asin(|vector part of q2^-1 q1|).
     q1, q2 = np.atleast_2d(q1), np.atleast_2d(q2)
     conj = q2 * np.array([1, -1, -1, -1])
     rel = np.array([quat_mul(c, q) for c, q in zip(conj, q1)])

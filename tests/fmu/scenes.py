@@ -1,3 +1,2 @@
 """The tests' names for the scene builders (rigidfmu.scenes): dicts in the scene format."""
-from rigidfmu.scenes import (body, cube_on_floor, floor, free_spin, projectile, scene,  # noqa: F401
-                             two_bodies)
+from rigidfmu.scenes import body, cube_on_floor, floor, free_spin, projectile, scene, two_bodies  # noqa: F401

@@ -26,8 +26,7 @@ import numpy as np
 import pytest
 from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import (fmi2Boolean, fmi2Byte, fmi2FMUstate, fmi2Integer, fmi2Real, fmi2String,
-                       fmi2ValueReference)
+from fmpy.fmi2 import fmi2Boolean, fmi2Byte, fmi2FMUstate, fmi2Integer, fmi2Real, fmi2String, fmi2ValueReference
 
 from rigidfmu.driver import STATUS, Recorder, Slave, load_library
 

@@ -6,7 +6,6 @@ import pytest
 from fmpy import simulate_fmu
 
 import scenes
-from harness import Slave
 
 R = 0.1
 

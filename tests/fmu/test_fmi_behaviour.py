@@ -13,7 +13,7 @@ from fmpy import extract
 from fmpy.fmi2 import fmi2LastSuccessfulTime, fmi2Terminated
 
 import scenes
-from harness import Recorder, Slave, status_of
+from harness import Slave, status_of
 
 POS = ["ball.position[1]", "ball.position[2]", "ball.position[3]"]
 

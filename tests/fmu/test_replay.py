@@ -106,8 +106,8 @@ def body_pixels(png, colour):
                     reason=f"no {CHROMIUM} or node (scripts/setup.sh installs Debian's chromium)")
 def test_page_shows_the_bodies_and_the_slider_moves_them(run):
     shots = run["dir"] / "shots"
-    printed = subprocess.run(["node", str(ROOT / "python" / "rigidfmu" / "replay" / "page" / "snapshot.mjs"), str(run["html"]),
-                              str(shots), "0", "last"],
+    snapshot = ROOT / "python" / "rigidfmu" / "replay" / "page" / "snapshot.mjs"
+    printed = subprocess.run(["node", str(snapshot), str(run["html"]), str(shots), "0", "last"],
                              check=True, capture_output=True, text=True, timeout=120).stdout
     report = json.loads(printed.strip().splitlines()[-1])
     assert report["errors"] == []

@@ -16,8 +16,8 @@ ENV = dict(os.environ, RIGIDFMU_SKIP_SETUP="1")
 
 
 def run(*args):
-    return subprocess.run([sys.executable, "-m", "rigidfmu", "report", "accuracy", *args], capture_output=True, text=True,
-                          env=ENV, cwd=ROOT, timeout=600)
+    return subprocess.run([sys.executable, "-m", "rigidfmu", "report", "accuracy", *args], capture_output=True,
+                          text=True, env=ENV, cwd=ROOT, timeout=600)
 
 
 @pytest.fixture(scope="module")

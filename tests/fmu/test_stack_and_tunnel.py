@@ -1,6 +1,5 @@
 """Resting contact in a stack, and a fast body against a thin one (issue 4)."""
 import numpy as np
-import pytest
 from fmpy import simulate_fmu
 
 import scenes

@@ -37,14 +37,15 @@ import tempfile
 import time
 
 import numpy as np
-from rigidfmu.native import SOURCE_ROOT
+
 from rigidfmu import driver
 from rigidfmu.errors import ReportError
-from rigidfmu.scenes import G, body, free_spin, scene
+from rigidfmu.native import SOURCE_ROOT
 from rigidfmu.references.heave import heave
-from rigidfmu.reports.fmu_build import ensure_core, package
-from rigidfmu.references.torque_free import torque_free_reference
 from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle
+from rigidfmu.references.torque_free import torque_free_reference
+from rigidfmu.reports.fmu_build import ensure_core, package
+from rigidfmu.scenes import G, body, free_spin, scene
 
 ROOT = SOURCE_ROOT  # the source tree: its build, scripts and docs
 
@@ -632,7 +633,8 @@ def write_markdown(path, results, model_methods, meta):
                                            for k, v in EXPECTED_ORDER.items()) +
              f"; adaptive, error vs tolerance: ~{ADAPTIVE_ORDER:g} (± {ADAPTIVE_TOLERANCE:g}); "
              "on the torque-free problems symplecticEuler 2 (without forces its drift is "
-             "the splitting's free rotation). A slope steeper than expected passes up to a further 0.5 (a small leading "
+             "the splitting's free rotation). A slope steeper than expected passes up to a "
+             "further 0.5 (a small leading "
              "error coefficient steepens the slope before the asymptotic range); a sweep "
              "whose error does not fall at all fails (*no convergence*). "
              "Methods not in this list are reported, not judged. `--quick` returns a "

@@ -14,10 +14,11 @@ import time
 
 import mujoco
 import numpy as np
+
 from rigidfmu.native import SOURCE_ROOT
-from rigidfmu.reports.mujoco_free_body import free_body_model
 from rigidfmu.references.quaternion import rotation_angle as angle
 from rigidfmu.references.torque_free import torque_free_reference
+from rigidfmu.reports.mujoco_free_body import free_body_model
 
 I = np.array([1.0, 2.0, 3.0])
 W0 = np.array([0.01, 5.0, 0.01])
@@ -49,9 +50,9 @@ def main(argv=None, prog=None):
             runs = [run(integrator, dt) for _ in range(repeats)]
             q = runs[0][0]
             per_step = statistics.median(r[1] for r in runs)
-            rows.append({"engine": f"MuJoCo {mujoco.__version__}", "method": integrator, "problem": "torque-free, intermediate axis",
-                         "dt": dt, "error": float(angle(q, q_ref)), "us_per_step": per_step * 1e6,
-                         "s_per_simulated_s": per_step / dt})
+            rows.append({"engine": f"MuJoCo {mujoco.__version__}", "method": integrator,
+                         "problem": "torque-free, intermediate axis", "dt": dt, "error": float(angle(q, q_ref)),
+                         "us_per_step": per_step * 1e6, "s_per_simulated_s": per_step / dt})
             print(f"MuJoCo {integrator:12s} dt={dt:g}: error {rows[-1]['error']:.3g} rad, "
                   f"{per_step * 1e6:.2f} us/step, {per_step / dt:.3g} s per simulated s")
     pathlib.Path(args.out).parent.mkdir(parents=True, exist_ok=True)

@@ -1,8 +1,9 @@
 """The table of example FMUs (docs/reports/fmus.md): for each scene in scripts/scenes/, the FMU's
 size, what its binaries weigh per platform (unpacked: linux64's library with the
-libraries bundled beside it, win64's one DLL), its bundled libraries, its number of variables and its cost per internal step
-(median of repeated runs through fmpy, 1 s communication steps). Rewrites the part of
-docs/reports/fmus.md between the fmu-table markers, or prints the table with --print.
+libraries bundled beside it, win64's one DLL), its bundled libraries, its number of
+variables and its cost per internal step (median of repeated runs through fmpy, 1 s
+communication steps). Rewrites the part of docs/reports/fmus.md between the fmu-table
+markers, or prints the table with --print.
 
 usage: rigidfmu report fmus [--print] [--quick] [--build BUILD_DIR]"""
 import argparse

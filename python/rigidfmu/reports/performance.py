@@ -36,14 +36,14 @@ import tempfile
 import time
 
 import numpy as np
-from rigidfmu.native import SOURCE_ROOT
+
 from rigidfmu import driver
 from rigidfmu.errors import ReportError
-
-from rigidfmu.scenes import bench as bench_scenes
+from rigidfmu.native import SOURCE_ROOT
 from rigidfmu.references.quaternion import rotation_angle
-from rigidfmu.reports.accuracy import cpu_name
 from rigidfmu.references.torque_free import torque_free_reference
+from rigidfmu.reports.accuracy import cpu_name
+from rigidfmu.scenes import bench as bench_scenes
 
 ROOT = SOURCE_ROOT  # the source tree: its build, scripts and docs
 PEERS_PYTHON = ROOT / ".venv-peers" / "bin" / "python"
@@ -771,7 +771,8 @@ def write_manifold_section(w, r):
     if awake:
         w("**Sleep off** (`BM_PileAwake/<N>`: the same runs with `\"solver\": {\"sleep\": false}`, once "
           "each): the solver alone, every body awake to the end. Islands sleep by default "
-          "(docs/guide/surfaces-and-contacts.md, *Sleeping islands*): a body none of whose points moves faster than 1 cm/s for "
+          "(docs/guide/surfaces-and-contacts.md, *Sleeping islands*): a body none of whose "
+          "points moves faster than 1 cm/s for "
           "0.5 s, in an island resting on a surface, sleeps until something touches or drives "
           "it; the table above is the default.\n")
         w("| N | falling: per simulated second | at rest: per step | at rest: per simulated second | "
@@ -833,7 +834,8 @@ def write_manifold_section(w, r):
 def main(argv=None, prog=None):
     p = argparse.ArgumentParser(prog=prog, description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--quick", action="store_true", help="short runs (for the test suite)")
-    p.add_argument("--out", default=str(ROOT / "docs" / "reports"), help="writes OUT/performance.md and OUT/performance/")
+    p.add_argument("--out", default=str(ROOT / "docs" / "reports"),
+                   help="writes OUT/performance.md and OUT/performance/")
     p.add_argument("--build", default=os.environ.get("RIGIDFMU_BUILD", str(ROOT / "build")))
     args = p.parse_args(argv)
     t_start = time.perf_counter()

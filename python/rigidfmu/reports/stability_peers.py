@@ -16,8 +16,10 @@ import time
 
 import mujoco
 import numpy as np
+
+from rigidfmu.references.quaternion import quat_axis_angle, quat_mul
+from rigidfmu.references.quaternion import rotation_angle as angle
 from rigidfmu.reports.mujoco_free_body import free_body_model
-from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle as angle
 
 I = np.array([2.0, 2.0, 3.0])
 H = 1e-2
@@ -82,11 +84,13 @@ def main(argv=None, prog=None):
         for method in BESIDE[r["integrator"]]:
             out.setdefault(key, {})[method] = text(r)
     lines = [f"MuJoCo {mujoco.__version__} (PyPI, `.venv-peers`) on the fast-spin case: the same symmetric top, "
-             f"h = {H:g} s, {STEPS} steps (`python/rigidfmu/reports/stability_peers.py`). MuJoCo integrates the free joint's quaternion by the "
-             "exact exponential of the body angular velocity and keeps it unit; its Euler is semi-implicit (velocity first). "
-             "Shown beside the rigidfmu method of the same family (Euler beside euler and symplecticEuler, RK4 beside rk4 "
-             "and lieRk4, implicit beside rosenbrock when the FMU has it).", "",
-             "| h·\\|ω\\| | integrator | energy drift | max \\|q\\|−1 | θ(T) (rad) | finite | bad-acceleration warnings | run time |",
+             f"h = {H:g} s, {STEPS} steps (`python/rigidfmu/reports/stability_peers.py`). "
+             "MuJoCo integrates the free joint's quaternion by the exact exponential of the body angular "
+             "velocity and keeps it unit; its Euler is semi-implicit (velocity first). "
+             "Shown beside the rigidfmu method of the same family (Euler beside euler and symplecticEuler, "
+             "RK4 beside rk4 and lieRk4, implicit beside rosenbrock when the FMU has it).", "",
+             "| h·\\|ω\\| | integrator | energy drift | max \\|q\\|−1 | θ(T) (rad) | finite "
+             "| bad-acceleration warnings | run time |",
              "|---:|---|---:|---:|---:|---|---:|---:|"]
     for r in runs:
         lines.append(f"| {r['hw']:g} | {r['integrator']} | {r['drift']:.2g} | {r['qnorm']:.2g} | {r['error']:.3g} | "

@@ -15,8 +15,8 @@ import time
 import numpy as np
 from fmpy.fmi1 import FMICallException
 
-from rigidfmu.study import metrics as study_metrics
 from rigidfmu.driver import Fmu, Slave, Trace, status_name
+from rigidfmu.study import metrics as study_metrics
 
 _local = threading.local()  # per worker thread: FMU content hash -> LoadedFmu
 

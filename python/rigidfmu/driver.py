@@ -82,12 +82,15 @@ class Recorder:
         self.counts.clear()
 
 
-def load_library(md, unzip_dir, instance_name) -> FMU2Slave:
-    """fmpy's FMU2Slave of an unpacked FMU (its library loaded, not instantiated)."""
+def load_library(md, unzip_dir, instance_name):
+    """fmpy's FMU2Slave, or FMU3Slave for an FMI 3.0 FMU, of an unpacked FMU (its
+    library loaded, not instantiated)."""
+    slave = FMU2Slave
+    if md.fmiVersion.startswith("3"):
+        from fmpy.fmi3 import FMU3Slave as slave
     with _loading:
-        return FMU2Slave(guid=md.guid, unzipDirectory=unzip_dir,
-                         modelIdentifier=md.coSimulation.modelIdentifier,
-                         instanceName=instance_name)
+        return slave(guid=md.guid, unzipDirectory=unzip_dir, modelIdentifier=md.coSimulation.modelIdentifier,
+                     instanceName=instance_name)
 
 
 class Fmu:

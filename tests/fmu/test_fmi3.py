@@ -16,6 +16,8 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi3 import FMU3Slave, fmi3Error
 from fmpy.validation import validate_fmu
 
+from rigidfmu.driver import Fmu, load_library
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 EXAMPLES = sorted(p.name for p in (ROOT / "scripts" / "scenes").glob("*.json"))
 
@@ -41,13 +43,12 @@ class Fmi3:
     """One instance of an FMI 3 FMU, addressed by variable name."""
 
     def __init__(self, fmu, folder, name="fmi3", early_return_allowed=False):
-        self.md = read_model_description(str(fmu))
-        self.dir = extract(str(fmu), unzipdir=str(folder))
-        self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
+        self.unpacked = Fmu(fmu, unzip_dir=extract(str(fmu), unzipdir=str(folder)))
+        self.md = self.unpacked.md
+        self.vr = {name: v.valueReference for name, v in self.unpacked.vars.items()}
         self.floats = [v.valueReference for v in self.md.modelVariables if v.type == "Float64"]
         self.log = Logged()
-        self.slave = FMU3Slave(guid=self.md.guid, unzipDirectory=self.dir,
-                               modelIdentifier=self.md.coSimulation.modelIdentifier, instanceName=name)
+        self.slave = load_library(self.md, self.unpacked.dir, name)
         self.slave.instantiate(logMessage=self.log, earlyReturnAllowed=early_return_allowed)
         self.time = 0.0
 

@@ -15,7 +15,9 @@ import subprocess
 import zipfile
 
 import pytest
-from fmpy import extract, read_model_description
+from fmpy import extract
+
+from rigidfmu.driver import Fmu
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 SCENES = sorted((ROOT / "scripts" / "scenes").glob("*.json"))
@@ -81,8 +83,9 @@ class Unpacked:
 
     def __init__(self, fmu, folder):
         self.fmu = fmu
-        self.md = read_model_description(str(fmu))
-        self.dir = pathlib.Path(extract(str(fmu), unzipdir=str(folder))).resolve()
+        unpacked = Fmu(fmu, unzip_dir=extract(str(fmu), unzipdir=str(folder)))
+        self.md = unpacked.md
+        self.dir = pathlib.Path(unpacked.dir).resolve()
         ident = self.md.coSimulation.modelIdentifier
         self.so = self.dir / "binaries" / "linux64" / f"{ident}.so"
         self.dll = self.dir / "binaries" / "win64" / f"{ident}.dll"

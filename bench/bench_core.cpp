@@ -14,6 +14,8 @@
 //     the bodies asleep at 3 s (sleep.h; the scene's default rules).
 //   BM_PileAwake/<N>: BM_PileManifold with sleep off (solver.sleep false): the solver
 //     alone, every body awake to the end.
+//   BM_PileWide/<N>: BM_PileManifold on pile_wide_<N>.json, N cubes in columns of the
+//     pile of 100's height: growth from 100 cubes at equal height.
 #include <benchmark/benchmark.h>
 #include <time.h>  // clock_gettime, CLOCK_THREAD_CPUTIME_ID (POSIX)
 
@@ -215,8 +217,8 @@ void windowCounters(benchmark::State& state, const std::string& name, const Wind
 // step by step with this thread's CPU clock, the probes outside it; the State's own
 // timed region is the first second (as BM_Pile's), so the console's CPU column reads
 // like BM_Pile's, but the report takes the windows' counters.
-void pileManifold(benchmark::State& state, int n, bool sleep) {
-  rigid::Scene scene = load("pile_manifold_" + std::to_string(n) + ".json");
+void pileManifold(benchmark::State& state, const std::string& file, bool sleep) {
+  rigid::Scene scene = load(file);
   scene.model.sleep.enabled = sleep;
   const double h = scene.model.maxStep;
   const int perSecond = static_cast<int>(1.0 / h + 0.5);
@@ -293,9 +295,13 @@ int main(int argc, char** argv) {
   for (int n : {10, 100, 1000})
     for (bool sleep : {true, false})
       benchmark::RegisterBenchmark(((sleep ? "BM_PileManifold/" : "BM_PileAwake/") + std::to_string(n)).c_str(),
-                                   pileManifold, n, sleep)
+                                   pileManifold, "pile_manifold_" + std::to_string(n) + ".json", sleep)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
+  // the wide pile's count: bench.py's WIDE_PILE
+  benchmark::RegisterBenchmark("BM_PileWide/1024", pileManifold, std::string("pile_wide_1024.json"), true)
+      ->Unit(benchmark::kMillisecond)
+      ->Iterations(1);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

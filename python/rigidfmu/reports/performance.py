@@ -99,6 +99,8 @@ def run_core(build, scenes, quick, pattern=None, reps=1):
                 key = ("manifold", int(parts[1]))
             elif parts[0] == "BM_PileAwake":
                 key = ("awake", int(parts[1]))
+            elif parts[0] == "BM_PileWide":
+                key = ("wide", int(parts[1]))
             else:
                 key = ("pile", int(parts[1]))
             results[key] = b
@@ -209,6 +211,16 @@ def run_manifold(build, scenes, folder, quick):
     awake, _ = run_core(build, scenes, quick, pattern=f"^BM_PileAwake/({'|'.join(map(str, counts))})/", reps=1)
     return ({n: manifold_figures(entries[n]) for n in sorted(entries)}, interleaved,
             {k[1]: manifold_figures(b) for k, b in sorted(awake.items())})
+
+
+def run_wide(build, scenes, quick):
+    """BM_PileWide: the wide pile (bench_scenes.WIDE_PILE cubes in columns of the pile of
+    100's height), the medians of 3 runs; {} in quick mode (it is as dear as the pile of
+    1000)."""
+    if quick:
+        return {}
+    wide, _ = run_core(build, scenes, quick, pattern=f"^BM_PileWide/{bench_scenes.WIDE_PILE}/", reps=3)
+    return {k[1]: manifold_figures(b) for k, b in sorted(wide.items())}
 
 
 # ----------------------------------------------------------------------------------
@@ -422,6 +434,25 @@ def targets(free, piles, peers, interleaved=None):
         for a, b, s, limit in growth(pts):
             rows.append((f"{label}: growth {a} → {b} no faster than N log N (slope ≤ {limit:.2f})",
                          f"slope {s:.2f}", "PASS" if s <= limit else "MISS"))
+    return rows
+
+
+def equal_height_targets(manifold, wide):
+    """Growth from the pile of 100 (5 x 5 columns of 4) to the wide pile (16 x 16 columns
+    of 4): N grows, the columns' height does not."""
+    rows = []
+    if 100 not in manifold:
+        return rows
+    for n, m in wide.items():
+        limit = nlogn_slope(100, n)
+        for w, name in (("fall", "falling"), ("rest", "at rest")):
+            a, b = manifold[100][w]["us_per_step"], m[w]["us_per_step"]
+            if not (math.isfinite(a) and math.isfinite(b)):
+                continue
+            s = slope(100, a, n, b)
+            rows.append((f"equal height (columns of {bench_scenes.WIDE_LAYERS}) {name}: growth 100 → {n} "
+                         f"no faster than N log N (slope ≤ {limit:.2f})", f"slope {s:.2f}",
+                         "PASS" if s <= limit else "MISS"))
     return rows
 
 
@@ -783,6 +814,27 @@ def write_manifold_section(w, r):
               f"**{fmt_s(a['rest']['s_per_simulated_s'])}** | {a['rest']['iterations_per_solve']:.1f} | "
               f"{a['max_overlap_state_m'] * 1e3:.2f} mm | {a['max_speed_3s_mps']:.3g} m/s |")
         w("")
+    wide = r.get("manifold_wide") or {}
+    if wide and 100 in manifold:
+        w(f"**Equal height** (`BM_PileWide/<N>`, `pile_wide_<N>.json`: the same cubes, floor, step and "
+          f"solver in {bench_scenes.WIDE_LAYERS}-cube columns, as in the pile of 100, on a wider grid; "
+          "the medians of 3 runs). The cube-root piles grow taller with N (columns of 4 at 100, of 10 at "
+          "1000), and a taller column needs more Gauss-Seidel passes to carry its load down; this pile "
+          "grows N alone. Its growth targets are in the table above.\n")
+        w("| N | columns | falling: per step | falling: per simulated second | at rest: per step | "
+          "at rest: per simulated second | iterations per solve, falling | iterations per solve, at rest "
+          "| max overlap, 0–3 s | fastest body at 3 s | asleep at 3 s |")
+        w("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+        side = {n: round(math.sqrt(n / bench_scenes.WIDE_LAYERS)) for n in (100, *wide)}
+        for n, m, name in [(100, manifold[100], "pile_manifold_100"), *((k, v, f"pile_wide_{k}")
+                                                                        for k, v in wide.items())]:
+            f, s = m["fall"], m["rest"]
+            w(f"| {n} (`{name}`) | {side[n]} x {side[n]} of {bench_scenes.WIDE_LAYERS} | "
+              f"{f['us_per_step']:.1f} µs | {fmt_s(f['s_per_simulated_s'])} | {s['us_per_step']:.1f} µs | "
+              f"**{fmt_s(s['s_per_simulated_s'])}** | {f['iterations_per_solve']:.1f} | "
+              f"{s['iterations_per_solve']:.1f} | {m['max_overlap_state_m'] * 1e3:.2f} mm | "
+              f"{m['max_speed_3s_mps']:.3g} m/s | {m['asleep_3s']:.0f} of {n} |")
+        w("")
     w("Where a step goes (shares of the steps' wall time):\n")
     w("| N | window | " + " | ".join(STAGES) + " | other |")
     w("|---:|---|" + "---:|" * (len(STAGES) + 1))
@@ -878,6 +930,8 @@ def main(argv=None, prog=None):
                                              1 if args.quick else 3)
         log("== the manifold contact solver's piles (rigid-bench-core BM_PileManifold)")
         manifold, manifold_il, manifold_awake = run_manifold(build, scenes, folder, args.quick)
+        log("== the wide pile, columns as short as the pile of 100's (BM_PileWide)")
+        manifold_wide = run_wide(build, scenes, args.quick)
     if peers is None:
         log("MuJoCo: not measured (no .venv-peers; scripts/bench.sh without --quick creates it)")
     accuracy = {"T": T, "omega0": [float(x) for x in omega0], "ours": ours, "mujoco": [], "equal_accuracy": []}
@@ -887,7 +941,8 @@ def main(argv=None, prog=None):
         accuracy["equal_accuracy"] = equal_accuracy(ours, [m for m in peers["free_one"] if m["integrator"] == "RK4"])
 
     rows = targets(free, piles, peers, interleaved)
-    mrows = manifold_targets(manifold, peers, manifold_il, manifold_awake)
+    mrows = manifold_targets(manifold, peers, manifold_il, manifold_awake) + equal_height_targets(manifold,
+                                                                                                   manifold_wide)
     meta = {"quick": args.quick, "date": time.strftime("%Y-%m-%d %H:%M %Z"), "cpu": cpu_name(),
             "python": f"Python {platform.python_version()}", "repeats": repeats,
             "benchmark_library": f"1.7 ({context.get('library_build_type', '?')} build, Debian)",
@@ -895,7 +950,7 @@ def main(argv=None, prog=None):
             "seconds": time.perf_counter() - t_start}
     report = {"free": free, "piles": piles, "fmu": fmu, "peers": peers, "interleaved": interleaved,
               "manifold": manifold, "manifold_interleaved": manifold_il, "manifold_targets": mrows,
-              "manifold_awake": manifold_awake,
+              "manifold_awake": manifold_awake, "manifold_wide": manifold_wide,
               "accuracy": accuracy, "targets": rows, "meta": meta}
     fig_dir = out / "performance"
     files = plots(fig_dir, free, piles, peers, manifold)

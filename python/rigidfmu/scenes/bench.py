@@ -3,10 +3,13 @@
 very same bodies: free tumbling bodies, and piles of cubes falling on a floor. The
 piles are written twice, the second naming the contact solver ("manifold", the
 default), for the benchmarks that time them over 1 s (BM_Pile) and 3 s
-(BM_PileManifold).
+(BM_PileManifold). A third, wide pile (BM_PileWide) has as many cubes as the largest
+but in columns as short as the pile of 100's, so that the growth from 100 cubes can be
+read at equal height as well as at the growing height of the cube-root piles.
 
-  python -m rigidfmu.scenes.bench DIR    writes DIR/free_<N>.json, DIR/pile_<N>.json and
-                                         DIR/pile_manifold_<N>.json
+  python -m rigidfmu.scenes.bench DIR    writes DIR/free_<N>.json, DIR/pile_<N>.json,
+                                         DIR/pile_manifold_<N>.json and
+                                         DIR/pile_wide_<N>.json
 """
 import json
 import math
@@ -17,6 +20,8 @@ from rigidfmu.scenes import body, diag, floor, scene
 
 FREE_COUNTS = (1, 10, 100, 1000, 10000)
 PILE_COUNTS = (10, 100, 1000)
+WIDE_PILE = 1024   # 16 x 16 columns of 4: the pile of 100's height (5 x 5 columns of 4)
+WIDE_LAYERS = 4
 PILE_STEP = 2e-3   # s: MuJoCo's default timestep, the issue's figures' dt
 EDGE = 0.1         # m, cube edge
 GAP = 0.02         # m, between neighbouring cubes at the start
@@ -36,10 +41,12 @@ def free_scene(n):
     return scene(f"Free{n}", bodies, gravity=(0, 0, 0))
 
 
-def pile_layout(n):
+def pile_layout(n, layers=None):
     """Columns on a square grid, layers upwards: (x, y, z) of each cube's centre and a
-    small tilt (rad, about x and y) so that cubes land on edges and tumble."""
-    side = max(1, round(n ** (1 / 3)))  # 10 cubes: 2 x 2 columns, 100: 5 x 5, 1000: 10 x 10
+    small tilt (rad, about x and y) so that cubes land on edges and tumble. The grid is
+    n^(1/3) a side (10 cubes: 2 x 2 columns, 100: 5 x 5 of 4, 1000: 10 x 10 of 10), or
+    sqrt(n / layers) with columns of `layers` cubes."""
+    side = max(1, round(n ** (1 / 3) if layers is None else math.sqrt(n / layers)))
     per_layer = side * side
     pitch = EDGE + GAP
     out = []
@@ -59,9 +66,9 @@ def quat_xy(ax, ay):
     return [cy * cx, cy * sx, sy * cx, -sy * sx]
 
 
-def pile_scene(n):
+def pile_scene(n, layers=None):
     bodies = []
-    for k, ((x, y, z), (ax, ay)) in enumerate(pile_layout(n)):
+    for k, ((x, y, z), (ax, ay)) in enumerate(pile_layout(n, layers)):
         bodies.append(body(f"c{k}", {"type": "box", "size": [EDGE] * 3}, 1.0,
                            position=[x, y, z], orientation=quat_xy(ax, ay),
                            restitution=0.0, staticFriction=0.6, kineticFriction=0.6,
@@ -78,6 +85,15 @@ def pile_manifold_scene(n):
     return scene
 
 
+def pile_wide_scene(n):
+    """pile_manifold_scene(n) laid out in columns of WIDE_LAYERS cubes (the pile of
+    100's height): the same cubes, floor, step and solver, only the layout differs."""
+    scene = pile_scene(n, layers=WIDE_LAYERS)
+    scene["name"] = f"PileWide{n}"
+    scene["solver"] = dict(scene["solver"], contacts="manifold")
+    return scene
+
+
 def write(directory):
     d = pathlib.Path(directory)
     d.mkdir(parents=True, exist_ok=True)
@@ -86,6 +102,7 @@ def write(directory):
     for n in PILE_COUNTS:
         (d / f"pile_{n}.json").write_text(json.dumps(pile_scene(n)))
         (d / f"pile_manifold_{n}.json").write_text(json.dumps(pile_manifold_scene(n)))
+    (d / f"pile_wide_{WIDE_PILE}.json").write_text(json.dumps(pile_wide_scene(WIDE_PILE)))
 
 
 if __name__ == "__main__":

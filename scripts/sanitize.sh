@@ -17,13 +17,9 @@ export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:detect_leaks=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 (cd "$build" && /usr/bin/ctest --output-on-failure -j"$(nproc)")
 cd "$root"
-# Left out here (they run in the plain suite): the stress and accuracy reports and the
-# script tests (replay, studies, benchmarks), which drive whole scripts, browsers and
-# worker processes rather than the FMU's memory, and
-# valgrind, which cannot run beside ASan.
+# tests/fmu only: tests/scripts (the reports, replay, studies, benchmarks and the package)
+# drive whole scripts, browsers and worker processes rather than the FMU's memory and run
+# in the plain suite; valgrind is left out too, it cannot run beside ASan.
 LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.so)" \
   ASAN_OPTIONS="halt_on_error=1:detect_leaks=0" RIGIDFMU_SANITIZED=1 RIGIDFMU_SKIP_SETUP=1 \
-  RIGIDFMU_BUILD="$build" "$root/.venv/bin/python" -m pytest tests/fmu -q \
-  --ignore=tests/fmu/test_stress.py --ignore=tests/fmu/test_report_accuracy.py \
-  --ignore=tests/fmu/test_scripts.py --ignore=tests/fmu/test_replay.py --ignore=tests/fmu/test_study.py \
-  --ignore=tests/fmu/test_bench.py "$@"
+  RIGIDFMU_BUILD="$build" "$root/.venv/bin/python" -m pytest tests/fmu -q "$@"

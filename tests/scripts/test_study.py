@@ -13,8 +13,8 @@ import numpy as np
 import pyarrow.parquet as pq
 import pytest
 
-from harness import Slave, status_of
-from scenes import body, scene
+from rigidfmu.driver import Slave, status_of
+from rigidfmu.scenes import body, scene
 
 pytestmark = pytest.mark.slow  # a whole script or browser run (pyproject.toml)
 

@@ -72,7 +72,7 @@ def test_table_shows_the_expected_orders_on_smooth_problems(quick, problem, meth
 
 def test_symplectic_euler_is_first_order_with_forces(quick):
     """Without torque its drift is the splitting's free rotation (second order, see
-    test_torque_free.py); with drag the kick makes it first order."""
+    tests/fmu/test_torque_free.py); with drag the kick makes it first order."""
     _, out = quick
     cell = order_cells((out / "accuracy.md").read_text(), "projectile with linear drag")["symplecticEuler"]
     assert abs(float(re.match(r"[0-9.]+", cell).group(0)) - 1.0) <= 0.25, cell

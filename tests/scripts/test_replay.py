@@ -15,7 +15,7 @@ import pytest
 from PIL import Image
 
 from rigidfmu.replay import colour_of
-from scenes import body, scene
+from rigidfmu.scenes import body, scene
 
 pytestmark = pytest.mark.slow  # a whole script or browser run (pyproject.toml)
 

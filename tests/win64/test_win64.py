@@ -1,6 +1,7 @@
-"""The win64 binary of every example FMU (issue 20): what the DLL exports and imports,
-and the same calls through our C importer (fmu_driver.c) on the linux64 .so natively
-and on the win64 .dll under Debian's wine64, whose results must agree.
+"""The win64 binary of every example FMU (issue 20), FMI 2.0 and FMI 3.0: what the DLL
+exports and imports, and the same calls through our C importer (fmu_driver.c, compiled
+for either version) on the linux64 .so natively and on the win64 .dll under Debian's
+wine64, whose results must agree.
 
 Skipped, with the reason, only where MinGW-w64 or wine64 is not installed;
 scripts/setup.sh installs both, so the suite's own runs (./scripts/test.sh, CI) always
@@ -50,22 +51,33 @@ MODEL_EXCHANGE_ONLY = {"fmi2EnterEventMode", "fmi2NewDiscreteStates", "fmi2Enter
                        "fmi2GetNominalsOfContinuousStates"}
 
 
-def co_simulation_functions() -> set[str]:
+def co_simulation_functions(fmi=2) -> set[str]:
     """The functions fmi2Functions.h declares (FMI2_Export fmi2xxxTYPE fmi2xxx;) for a
-    Co-Simulation FMU: the common ones and the Co-Simulation ones."""
-    text = (fmi_headers() / "fmi2Functions.h").read_text()
-    return set(re.findall(r"FMI2_Export\s+fmi2\w+TYPE\s+(fmi2\w+);", text)) - MODEL_EXCHANGE_ONLY
+    Co-Simulation FMU: the common ones and the Co-Simulation ones. FMI 3.0: every
+    function fmi3Functions.h declares (an FMU exports them all, those of the interfaces
+    it does not provide refusing)."""
+    text = (fmi_headers() / f"fmi{fmi}Functions.h").read_text()
+    declared = set(re.findall(rf"FMI{fmi}_Export\s+fmi{fmi}\w+TYPE\s+(fmi{fmi}\w+);", text))
+    return declared - MODEL_EXCHANGE_ONLY if fmi == 2 else declared
+
+
+# the number of functions co_simulation_functions finds: a header read wrong finds fewer
+DECLARED = {2: 34, 3: 75}
 
 
 @pytest.fixture(scope="module")
 def drivers(tmp_path_factory):
-    """fmu_driver.c compiled for this machine and for win64."""
+    """fmu_driver.c compiled for this machine and for win64, per FMI version:
+    {fmi: (linux driver, windows driver)}."""
     d = tmp_path_factory.mktemp("drivers")
     env = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}  # not for the compilers
-    flags = ["-std=c99", "-O1", "-Wall", "-Wextra", "-Werror", "-I", str(fmi_headers()), str(DRIVER)]
-    subprocess.run(["gcc", *flags, "-o", str(d / "fmu_driver"), "-ldl", "-lm"], check=True, env=env)
-    subprocess.run([MINGW, *flags, "-o", str(d / "fmu_driver.exe")], check=True, env=env)
-    return d / "fmu_driver", d / "fmu_driver.exe"
+    out = {}
+    for fmi, define in ((2, []), (3, ["-DFMI3"])):
+        flags = ["-std=c99", "-O1", "-Wall", "-Wextra", "-Werror", *define, "-I", str(fmi_headers()), str(DRIVER)]
+        subprocess.run(["gcc", *flags, "-o", str(d / f"fmu{fmi}_driver"), "-ldl", "-lm"], check=True, env=env)
+        subprocess.run([MINGW, *flags, "-o", str(d / f"fmu{fmi}_driver.exe")], check=True, env=env)
+        out[fmi] = d / f"fmu{fmi}_driver", d / f"fmu{fmi}_driver.exe"
+    return out
 
 
 @pytest.fixture(scope="module")
@@ -78,31 +90,47 @@ def wine_env():
     return env
 
 
+# the binaries' folders (FMI 2.0's platform names, FMI 3.0's platform tuples)
+PLATFORMS = {2: ("linux64", "win64"), 3: ("x86_64-linux", "x86_64-windows")}
+
+
 class Unpacked:
     """One FMU unpacked: its model description and the paths the driver needs."""
 
-    def __init__(self, fmu, folder):
-        self.fmu = fmu
+    def __init__(self, fmu, folder, fmi=2):
+        self.fmu, self.fmi = fmu, fmi
         unpacked = Fmu(fmu, unzip_dir=extract(str(fmu), unzipdir=str(folder)))
         self.md = unpacked.md
+        assert self.md.fmiVersion.startswith(f"{fmi}."), self.md.fmiVersion
         self.dir = pathlib.Path(unpacked.dir).resolve()
         ident = self.md.coSimulation.modelIdentifier
-        self.so = self.dir / "binaries" / "linux64" / f"{ident}.so"
-        self.dll = self.dir / "binaries" / "win64" / f"{ident}.dll"
-        self.reals = [v for v in self.md.modelVariables if v.type == "Real"]
+        linux, windows = PLATFORMS[fmi]
+        self.so = self.dir / "binaries" / linux / f"{ident}.so"
+        self.dll = self.dir / "binaries" / windows / f"{ident}.dll"
+        real = "Real" if fmi == 2 else "Float64"
+        self.reals = [v for v in self.md.modelVariables if v.type == real]
+
+    def resources(self, windows):
+        """FMI 2.0: the resources' URI; FMI 3.0: their path, ending in a separator.
+        wine's drive Z: is the root of this machine's file system."""
+        folder = self.dir / "resources"
+        if self.fmi == 3:
+            return "Z:" + str(folder).replace("/", "\\") + "\\" if windows else str(folder) + "/"
+        return "file:///Z:" + str(folder) if windows else folder.as_uri()
 
     def linux_args(self):
-        return [str(self.so), self.md.guid, (self.dir / "resources").as_uri()]
+        return [str(self.so), self.md.guid, self.resources(windows=False)]
 
     def windows_args(self):
-        # wine's drive Z: is the root of this machine's file system
-        return ["Z:" + str(self.dll).replace("/", "\\"), self.md.guid, "file:///Z:" + str(self.dir / "resources")]
+        return ["Z:" + str(self.dll).replace("/", "\\"), self.md.guid, self.resources(windows=True)]
 
 
-@pytest.fixture(scope="module", params=[s.name for s in SCENES])
+@pytest.fixture(scope="module", params=[(s.name, fmi) for s in SCENES for fmi in (2, 3)],
+                ids=lambda p: f"{p[0].removesuffix('.json')}-fmi{p[1]}")
 def unpacked(request, fmu_of, tmp_path_factory):
-    fmu = fmu_of(json.loads((ROOT / "scripts" / "scenes" / request.param).read_text()))
-    return Unpacked(fmu, tmp_path_factory.mktemp(request.param.removesuffix(".json")))
+    scene, fmi = request.param
+    fmu = fmu_of(json.loads((ROOT / "scripts" / "scenes" / scene).read_text()), fmi=fmi)
+    return Unpacked(fmu, tmp_path_factory.mktemp(f"{scene.removesuffix('.json')}-fmi{fmi}"), fmi)
 
 
 def run(cmd, env=None):
@@ -114,25 +142,26 @@ def run(cmd, env=None):
 
 def test_the_fmu_carries_a_win64_dll_beside_the_linux64_library(unpacked):
     names = zipfile.ZipFile(unpacked.fmu).namelist()
-    assert f"binaries/win64/{unpacked.dll.name}" in names
-    assert f"binaries/linux64/{unpacked.so.name}" in names
-    assert [n for n in names if n.startswith("binaries/win64/")] == [f"binaries/win64/{unpacked.dll.name}"], \
+    linux, windows = PLATFORMS[unpacked.fmi]
+    assert f"binaries/{windows}/{unpacked.dll.name}" in names
+    assert f"binaries/{linux}/{unpacked.so.name}" in names
+    assert [n for n in names if n.startswith(f"binaries/{windows}/")] == [f"binaries/{windows}/{unpacked.dll.name}"], \
         "the DLL needs nothing beside it"
 
 
-def test_the_dll_exports_the_fmi2_functions_and_imports_only_system_dlls(unpacked):
+def test_the_dll_exports_the_fmi_functions_and_imports_only_system_dlls(unpacked):
     dump = run([OBJDUMP, "-p", str(unpacked.dll)])
     imports = {m.lower() for m in re.findall(r"DLL Name: (\S+)", dump)}
     assert imports and imports <= SYSTEM_DLLS, f"imports beyond {sorted(SYSTEM_DLLS)}: {sorted(imports - SYSTEM_DLLS)}"
     table = dump[dump.index("[Ordinal/Name Pointer] Table"):].split("\n\n")[0]
     exported = set(re.findall(r"^\s*\[\s*\d+\]\s+(\w+)\s*$", table, re.M))
-    wanted = co_simulation_functions()
-    assert len(wanted) == 34, f"fmi2Functions.h's Co-Simulation functions were not found: {sorted(wanted)}"
+    wanted = co_simulation_functions(unpacked.fmi)
+    assert len(wanted) == DECLARED[unpacked.fmi], f"the header's functions were not found: {sorted(wanted)}"
     assert exported == wanted, (f"missing {sorted(wanted - exported)}, "
                                 f"beyond the FMI functions {sorted(exported - wanted)}")
     # the same set as the linux64 library's
     symbols = run(["nm", "-D", "--defined-only", str(unpacked.so)])
-    assert set(re.findall(r" T (fmi2\w+)$", symbols, re.M)) == exported
+    assert set(re.findall(rf" T (fmi{unpacked.fmi}\w+)$", symbols, re.M)) == exported
 
 
 def settings(unpacked):
@@ -168,7 +197,7 @@ def test_win64_runs_the_same_calls_as_linux64(unpacked, drivers, wine_env):
     runtime's transcendental functions (glibc's libm against msvcrt's): the driver's
     inputs were first sin() waves and differed in the last bit, so they are triangle waves
     now. The bound allows a last-bit difference of the core's own libm calls."""
-    linux, windows = drivers
+    linux, windows = drivers[unpacked.fmi]
     outputs = ",".join(str(v.valueReference) for v in unpacked.reals)
     call = ["run", "1000", "0.005", outputs, *settings(unpacked)]
     ours = parse(run([str(linux), *unpacked.linux_args(), *call]))
@@ -185,22 +214,24 @@ def test_win64_runs_the_same_calls_as_linux64(unpacked, drivers, wine_env):
         assert platform[("reset", 10)] == platform[("step", 10)]
 
 
+@pytest.mark.parametrize("fmi", [2, 3])
 @pytest.mark.parametrize("scene", ["default.json", "thruster.json"])
-def test_win64_answers_bad_calls_as_linux64(scene, fmu_of, drivers, wine_env, tmp_path):
-    """The abuse tests' sample through the driver: fmi2DoStep before initialisation, a NaN
-    input, an unknown value reference (get and set): each refused with fmi2Error and the
-    same message on both platforms, and the instance still steps."""
-    unpacked = Unpacked(fmu_of(json.loads((ROOT / "scripts" / "scenes" / scene).read_text())), tmp_path)
+def test_win64_answers_bad_calls_as_linux64(scene, fmi, fmu_of, drivers, wine_env, tmp_path):
+    """The abuse tests' sample through the driver: DoStep before initialisation, a NaN
+    input, an unknown value reference (get and set): each refused with Error (3 in both
+    versions) and the same message on both platforms, and the instance still steps."""
+    scene_dict = json.loads((ROOT / "scripts" / "scenes" / scene).read_text())
+    unpacked = Unpacked(fmu_of(scene_dict, fmi=fmi), tmp_path, fmi)
     inputs = [v for v in unpacked.reals if v.causality == "input"]
     assert inputs, f"{scene} has no Real input"
     call = ["abuse", str(inputs[0].valueReference)]
-    ours = run([str(drivers[0]), *unpacked.linux_args(), *call])
-    theirs = run([WINE, str(drivers[1]), *unpacked.windows_args(), *call], env=wine_env)
+    ours = run([str(drivers[fmi][0]), *unpacked.linux_args(), *call])
+    theirs = run([WINE, str(drivers[fmi][1]), *unpacked.windows_args(), *call], env=wine_env)
     assert ours == theirs
     lines = [line for line in ours.splitlines() if " status " in line]
     assert len(lines) == 4
     for line in lines:
-        assert " status 3: " in line, line  # fmi2Error
+        assert " status 3: " in line, line  # fmi2Error, fmi3Error
     assert "not allowed in state Instantiated" in lines[0]
     assert f"{inputs[0].name}: must be finite" in lines[1]
     assert "unknown value reference 4000000000" in lines[2] and "unknown value reference 4000000000" in lines[3]

@@ -47,14 +47,15 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
-from rigidfmu.native import SOURCE_ROOT
+
 from rigidfmu import driver
 from rigidfmu.errors import ReportError
-from rigidfmu.scenes import G, body, free_spin, scene
+from rigidfmu.native import SOURCE_ROOT
 from rigidfmu.references.heave import heave
 from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle
-from rigidfmu.reports.fmu_build import ensure_core, package
 from rigidfmu.references.torque_free import torque_free_reference
+from rigidfmu.reports.fmu_build import ensure_core, package
+from rigidfmu.scenes import G, body, free_spin, scene
 
 ROOT = SOURCE_ROOT  # the source tree: its build, scripts and docs
 RHO_WATER, MU_WATER = 998.2, 1.002e-3  # the "water" type (README)
@@ -274,7 +275,8 @@ def energy(tr, scene_dict, masses=None, gravity=True):
     for b in scene_dict["bodies"]:
         n = b["name"]
         m = (masses or {}).get(n, b["mass"])
-        v, w, L, x = tr.vec(f"{n}.velocity"), tr.vec(f"{n}.angularVelocity"), tr.vec(f"{n}.angularMomentum"), tr.vec(f"{n}.position")
+        v, w, L, x = (tr.vec(f"{n}.velocity"), tr.vec(f"{n}.angularVelocity"), tr.vec(f"{n}.angularMomentum"),
+                      tr.vec(f"{n}.position"))
         E = E + 0.5 * m * np.sum(v * v, axis=1) + 0.5 * np.sum(w * L, axis=1) - m * (x @ g)
     return E
 
@@ -393,7 +395,9 @@ def cases(quick, methods):
         h = 1e-2
         w = hw / h
         omega = (w * math.sin(math.radians(30)), 0.0, w * math.cos(math.radians(30)))
-        out.append(spin_case(f"fast-spin-hw{hw:g}", f"fast spin, h·|ω| = {hw:g} (symmetric top I = (2, 2, 3), ω 30° off its axis, h = 1e-2 s, 1e4 steps)",
+        out.append(spin_case(f"fast-spin-hw{hw:g}",
+                             f"fast spin, h·|ω| = {hw:g} (symmetric top I = (2, 2, 3), ω 30° off its axis, "
+                             "h = 1e-2 s, 1e4 steps)",
                              I_top, omega, h, 100.0, 1.0,
                              (lambda om: lambda t: symmetric_top(I_top, om, t))(omega)))
 
@@ -409,7 +413,8 @@ def cases(quick, methods):
                 ref_cache[key] = torque_free_reference(I, w, t)
             return ref_cache[key]
         return f
-    out.append(spin_case("tumbling-intermediate", f"intermediate-axis tumbling, I = (1, 2, 3), ω0 = (0.01, 5, 0.01) rad/s, h = 1e-3 s, {Tt:g} s",
+    out.append(spin_case("tumbling-intermediate",
+                         f"intermediate-axis tumbling, I = (1, 2, 3), ω0 = (0.01, 5, 0.01) rad/s, h = 1e-3 s, {Tt:g} s",
                          I3, w3, 1e-3, Tt, 1.0, dop(I3, w3)))
 
     # --- needle and triangle-inequality limit
@@ -417,10 +422,14 @@ def cases(quick, methods):
     out.append(spin_case("needle-inertia", "needle-like inertia (1e-6, 1, 1), ω0 = (2, 1, 0) rad/s, h = 1e-3 s, 10 s",
                          In, wn, 1e-3, 10.0, 0.1, lambda t: symmetric_top(In, wn, t)))
     Id, wd = (1.0, 1.0, 2.0), (1.0, 0.0, 2.0)
-    out.append(spin_case("triangle-limit-disc", "inertia at the triangle limit, I = (1, 1, 2) (flat disc), ω0 = (1, 0, 2) rad/s, h = 1e-3 s, 10 s",
+    out.append(spin_case("triangle-limit-disc",
+                         "inertia at the triangle limit, I = (1, 1, 2) (flat disc), ω0 = (1, 0, 2) rad/s, "
+                         "h = 1e-3 s, 10 s",
                          Id, wd, 1e-3, 10.0, 0.1, lambda t: symmetric_top(Id, wd, t)))
     Il, wl = (0.5, 1.5, 2.0), (1.0, 1.0, 1.0)
-    out.append(spin_case("triangle-limit-lamina", "inertia at the triangle limit, I = (0.5, 1.5, 2) (flat lamina), ω0 = (1, 1, 1) rad/s, h = 1e-3 s, 10 s",
+    out.append(spin_case("triangle-limit-lamina",
+                         "inertia at the triangle limit, I = (0.5, 1.5, 2) (flat lamina), ω0 = (1, 1, 1) rad/s, "
+                         "h = 1e-3 s, 10 s",
                          Il, wl, 1e-3, 10.0, 0.1, dop(Il, wl)))
 
     # --- stiff linear drag: b/m = 1e3 at h = 1e-2
@@ -483,10 +492,14 @@ def stiff_drag_case(quick):
             errtxt = f"|v−v_exact| {err:.3g} of |v0−v_T| (until refused)"
         return {"ok_violations": viol, "end_violations": end, "error": errtxt, "drift": gain}
 
-    return Case("stiff-drag", "media", "stiff linear drag: sphere m = 1 kg, b = 1e3 N·s/m (b/m = 1e3 /s), h = 1e-2 s (h·b/m = 10; rk4 stable only for h·b/m < 2.785), "
+    return Case("stiff-drag", "media",
+                "stiff linear drag: sphere m = 1 kg, b = 1e3 N·s/m (b/m = 1e3 /s), h = 1e-2 s "
+                "(h·b/m = 10; rk4 stable only for h·b/m < 2.785), "
                 f"v0 = (1, 0, 0) m/s, {T:g} s", s, T, 0.1,
-                "no NaN/Inf; |q|−1 ≤ 1e-12; mechanical energy never above its start (gain ≤ 1e-9 of ½ m v0²) at every point; "
-                "|v(T) − v_T| ≤ 1e-6 |v_T|, v_T = m g / b; error: max |v − v_exact| against v_T + (v0 − v_T) e^(−b t / m)",
+                "no NaN/Inf; |q|−1 ≤ 1e-12; mechanical energy never above its start (gain ≤ 1e-9 of ½ m v0²) "
+                "at every point; "
+                "|v(T) − v_T| ≤ 1e-6 |v_T|, v_T = m g / b; "
+                "error: max |v − v_exact| against v_T + (v0 − v_T) e^(−b t / m)",
                 judge)
 
 
@@ -531,9 +544,12 @@ def float_case(quick, h):
                 f"floating box 1 × 1 × 0.5 m with a 1 mm draft (m = {m:.4f} kg in water, heave ω = √(g/d) = 99 rad/s), "
                 f"released 0.5 mm deep, h = {h:g} s (h·ω = {h * math.sqrt(G / d):.2g}), {T:g} s",
                 s, T, H,
-                "no NaN/Inf; |q|−1 ≤ 1e-12; heave energy (kinetic + gravity + buoyancy potential ½ρgA s², from equilibrium) "
-                "never above its start by more than 1e-3 of it; x, y, ω stay 0 (1e-9); mean draft over the last 20 % within 5 % of 1 mm; "
-                "error: max |z − z_ref| against DOP853 on the heave equation (docs/reports/media.md), relative to the 0.5 mm offset",
+                "no NaN/Inf; |q|−1 ≤ 1e-12; heave energy (kinetic + gravity + buoyancy potential ½ρgA s², "
+                "from equilibrium) "
+                "never above its start by more than 1e-3 of it; x, y, ω stay 0 (1e-9); "
+                "mean draft over the last 20 % within 5 % of 1 mm; "
+                "error: max |z − z_ref| against DOP853 on the heave equation (docs/reports/media.md), "
+                "relative to the 0.5 mm offset",
                 judge, step=h)
 
 
@@ -584,18 +600,23 @@ def stack_case(quick, top, bottom):
                 "error": f"drift {worst_drift:.2g} m, penetration {worst_pen:.2g} m", "drift": gain}
 
     return Case(f"stack-{which.replace(' ', '-')}-{ratio:.0e}", "mass ratios",
-                f"stack {which}, mass ratio {ratio:.0e} (boxes of 0.1 m: {top:g} kg on {bottom:g} kg, on a floor), h = 1e-3 s, {T:g} s",
+                f"stack {which}, mass ratio {ratio:.0e} (boxes of 0.1 m: {top:g} kg on {bottom:g} kg, on a floor), "
+                f"h = 1e-3 s, {T:g} s",
                 s, T, 0.01,
-                "no NaN/Inf; |q|−1 ≤ 1e-12; penetration ≤ 1 mm and drift ≤ 1 mm at every point; energy never above its start "
-                "(gain ≤ 1e-5 of (m1+m2) g·edge: 1 µm of the heavier box); speeds ≤ 1e-3 m/s at the end; error: worst drift and penetration",
+                "no NaN/Inf; |q|−1 ≤ 1e-12; penetration ≤ 1 mm and drift ≤ 1 mm at every point; "
+                "energy never above its start "
+                "(gain ≤ 1e-5 of (m1+m2) g·edge: 1 µm of the heavier box); speeds ≤ 1e-3 m/s at the end; "
+                "error: worst drift and penetration",
                 judge)
 
 
 def impact_case(ratio):
     R = 0.1
     m1, m2, v1, v2 = 1.0, ratio, 2.0, -0.5
-    mk = lambda n, m, x, v: body(n, {"type": "sphere", "radius": R}, m, position=[x, 0, 0], velocity=[v, 0, 0],
-                                 restitution=1.0, staticFriction=0.0, kineticFriction=0.0)
+    def mk(n, m, x, v):
+        return body(n, {"type": "sphere", "radius": R}, m, position=[x, 0, 0], velocity=[v, 0, 0],
+                    restitution=1.0, staticFriction=0.0, kineticFriction=0.0)
+
     s = scene("Impact", [mk("a", m1, 0.0, v1), mk("b", m2, 2 * R + 0.5, v2)], gravity=(0, 0, 0))
     u1 = ((m1 - m2) * v1 + 2 * m2 * v2) / (m1 + m2)
     u2 = ((m2 - m1) * v2 + 2 * m1 * v1) / (m1 + m2)
@@ -624,10 +645,13 @@ def impact_case(ratio):
         return {"ok_violations": viol, "end_violations": end, "error": err, "drift": drift}
 
     return Case(f"impact-ratio-{ratio:.0e}", "mass ratios",
-                f"central elastic impact, mass ratio {ratio:.0e} (spheres 1 kg at 2 m/s and {ratio:g} kg at −0.5 m/s, ξ = 1, no friction), h = 1e-3 s, 1 s",
+                f"central elastic impact, mass ratio {ratio:.0e} (spheres 1 kg at 2 m/s and {ratio:g} kg at −0.5 m/s, "
+                "ξ = 1, no friction), h = 1e-3 s, 1 s",
                 s, 1.0, 0.05,
-                "no NaN/Inf; |q|−1 ≤ 1e-12; kinetic energy within 1e-9 and momentum within 1e-12 at every point; no overlap at the "
-                "communication points; velocities after the impact within 1e-9 of the closed form; error: velocities after against the closed form",
+                "no NaN/Inf; |q|−1 ≤ 1e-12; kinetic energy within 1e-9 and momentum within 1e-12 at every point; "
+                "no overlap at the "
+                "communication points; velocities after the impact within 1e-9 of the closed form; "
+                "error: velocities after against the closed form",
                 judge)
 
 
@@ -657,13 +681,17 @@ def plate_case(thickness):
         if tr.complete and not tr.col("ball.velocity[1]")[-1] < 0:
             end.append("the ball did not bounce back")
         return {"ok_violations": viol, "end_violations": end,
-                "error": f"penetration {max(pen, 0.0):.2g} m; v_ball(T) {tr.col('ball.velocity[1]')[-1]:.4g} m/s", "drift": gain}
+                "error": f"penetration {max(pen, 0.0):.2g} m; v_ball(T) {tr.col('ball.velocity[1]')[-1]:.4g} m/s",
+                "drift": gain}
 
     return Case(f"thin-plate-{thickness * 1e3:g}mm", "impacts",
-                f"100 m/s sphere (r = 5 mm, 4 g) against a {thickness * 1e3:g} mm plate (50 kg), h = 1e-3 s (10 cm per step), 0.05 s",
+                f"100 m/s sphere (r = 5 mm, 4 g) against a {thickness * 1e3:g} mm plate (50 kg), "
+                "h = 1e-3 s (10 cm per step), 0.05 s",
                 s, 0.05, 1e-3,
-                "no NaN/Inf; |q|−1 ≤ 1e-12; never beyond the plate's middle; penetration ≤ 0.1 mm, momentum within 1e-9, "
-                "no energy gain (1e-9) at every point; bounced back at the end; error: penetration and final velocity",
+                "no NaN/Inf; |q|−1 ≤ 1e-12; never beyond the plate's middle; penetration ≤ 0.1 mm, "
+                "momentum within 1e-9, "
+                "no energy gain (1e-9) at every point; bounced back at the end; "
+                "error: penetration and final velocity",
                 judge)
 
 
@@ -683,7 +711,8 @@ def long_run_case(quick):
 def comm_case(quick, H):
     x0, v0 = np.array([1.0, 2.0, 10.0]), np.array([3.0, -2.0, 4.0])
     g = np.array([0, 0, -G])
-    s = scene("Projectile", [body("ball", {"type": "sphere", "radius": 0.1}, 1.0, position=list(x0), velocity=list(v0))])
+    s = scene("Projectile",
+              [body("ball", {"type": "sphere", "radius": 0.1}, 1.0, position=list(x0), velocity=list(v0))])
     calls = 2000 if quick else 10000
     T = min(20.0, calls * H)
     T = max(T, 2 * H)
@@ -699,7 +728,8 @@ def comm_case(quick, H):
         bad = np.flatnonzero(np.any(~(err <= bound), axis=1))
         if len(bad):
             k = bad[0]
-            viol.append(f"position off the closed form by {err[k].max():.3g} m > bound {bound[k].max():.3g} m at t = {t[k]:g} s")
+            viol.append(f"position off the closed form by {err[k].max():.3g} m > bound {bound[k].max():.3g} m "
+                        f"at t = {t[k]:g} s")
         E = energy(tr, s)
         scale = 0.5 * float(v0 @ v0) + G * x0[2]
         drift = float(np.max(np.abs(E - E[0]))) / scale
@@ -709,9 +739,12 @@ def comm_case(quick, H):
     return Case(f"comm-step-{H:g}", "communication steps",
                 f"projectile, communication step {H:g} s, solver.step 1e-3 s, {T:g} s ({int(round(T / H))} steps)",
                 s, T, H,
-                "no NaN/Inf; |q|−1 ≤ 1e-12; position within the closed form x0 + v0 t + ½ g t² at every point: to 1e-9 (1 + |x|) for methods "
-                "exact for a constant force (rk4, lieRk4, splitting, dopri5), else within the first-order bound ½ |g| Σ h_k² more "
-                "(h_k: the internal steps, the last of each communication step shortened) — the same result whatever the communication step",
+                "no NaN/Inf; |q|−1 ≤ 1e-12; position within the closed form x0 + v0 t + ½ g t² at every point: "
+                "to 1e-9 (1 + |x|) for methods "
+                "exact for a constant force (rk4, lieRk4, splitting, dopri5), "
+                "else within the first-order bound ½ |g| Σ h_k² more "
+                "(h_k: the internal steps, the last of each communication step shortened) — "
+                "the same result whatever the communication step",
                 judge)
 
 
@@ -743,7 +776,8 @@ def scale_case(what, f):
         bad = np.flatnonzero(np.any(~(err <= bound), axis=1))
         if len(bad):
             k = bad[0]
-            viol.append(f"position off the closed form by {err[k].max():.3g} m > {bound[k].max():.3g} m at t = {t[k]:g} s")
+            viol.append(f"position off the closed form by {err[k].max():.3g} m > {bound[k].max():.3g} m "
+                        f"at t = {t[k]:g} s")
         th = "—"
         if tr.complete:
             th = f"{rotation_angle(tr.vec('b.orientation', 4)[-1], symmetric_top(I, w, t[-1])):.3g} rad"
@@ -755,8 +789,10 @@ def scale_case(what, f):
                 f"free-falling spinning cylinder, {label} of the usual (m = {m:g} kg, r = {r:g} m, l = {l:g} m), "
                 "v0 = (1, 0, 2) m/s, ω0 = (1, 0.5, 3) rad/s, h = 1e-3 s, 2 s",
                 s, 2.0, 0.05,
-                "no NaN/Inf; |q|−1 ≤ 1e-12; position within the projectile bound of comm-step cases; rotational energy and |L| "
-                "within 1e-3 at every point; error: position against the closed form, orientation at T against the symmetric top's precession",
+                "no NaN/Inf; |q|−1 ≤ 1e-12; position within the projectile bound of comm-step cases; "
+                "rotational energy and |L| "
+                "within 1e-3 at every point; error: position against the closed form, "
+                "orientation at T against the symmetric top's precession",
                 judge)
 
 
@@ -829,11 +865,15 @@ def spring_case(quick):
         return results, final, total
 
     return Case("stiff-spring", "co-simulation",
-                f"stiff spring closed through the force input by an fmpy master: F = −k x − c v (ζ = {SPRING_ZETA}) set at every communication "
-                f"point (H = 1e-3 s = solver.step), x(0) = {SPRING_X0} m, k = 1e2, 1e3, … until the loop diverges, {T:g} s each",
+                f"stiff spring closed through the force input by an fmpy master: F = −k x − c v (ζ = {SPRING_ZETA}) "
+                "set at every communication "
+                f"point (H = 1e-3 s = solver.step), x(0) = {SPRING_X0} m, k = 1e2, 1e3, … until the loop diverges, "
+                f"{T:g} s each",
                 s, T, H,
-                "no NaN/Inf in any fmi2OK output at any k; when the loop diverges the FMU either stays finite or refuses (fmi2Discard / "
-                "fmi2Error with a message); the k at which the explicit co-simulation loop breaks is the master's instability (its "
+                "no NaN/Inf in any fmi2OK output at any k; when the loop diverges the FMU either stays finite "
+                "or refuses (fmi2Discard / "
+                "fmi2Error with a message); the k at which the explicit co-simulation loop breaks "
+                "is the master's instability (its "
                 "zero-order hold), reported beside the k where the sampled-data map's spectral radius passes 1",
                 None, driver=driver)
 
@@ -883,10 +923,12 @@ def classify(case, tr, method):
         if tr.has_steps and tr.steps > tr.nominal:
             bits.append(f"{tr.steps} internal steps for {tr.nominal} nominal (×{tr.steps / tr.nominal:.4g})")
         if tr.substep_messages:
-            bits.append(f"log: “{tr.substep_messages[0]}”" + (f" (+{tr.substep_count - 1} more)" if tr.substep_count > 1 else ""))
+            bits.append(f"log: “{tr.substep_messages[0]}”"
+                        + (f" (+{tr.substep_count - 1} more)" if tr.substep_count > 1 else ""))
         res["note"] = "; ".join([b for b in [res["note"]] + bits if b])
     elif substepped:
-        res["note"] += f"; sub-stepped ×{tr.steps / tr.nominal:.3g}" if tr.has_steps and tr.nominal and tr.steps > tr.nominal else ""
+        res["note"] += (f"; sub-stepped ×{tr.steps / tr.nominal:.3g}"
+                        if tr.has_steps and tr.nominal and tr.steps > tr.nominal else "")
     return outcome, res
 
 
@@ -913,13 +955,16 @@ def classify_spring(case, method, results, final, total):
         res["error"] = f"loop stable up to k = {results[-1][0]:g}"
     else:
         kb, tr = final
-        res["error"] = f"loop breaks at k = {kb:g} (ZOH map: ρ > 1 from k ≈ {pred:.2g})" if pred else f"loop breaks at k = {kb:g}"
+        res["error"] = (f"loop breaks at k = {kb:g} (ZOH map: ρ > 1 from k ≈ {pred:.2g})" if pred
+                        else f"loop breaks at k = {kb:g}")
         xmax = float(np.max(np.abs(tr.col('mass.position[1]')))) if len(tr.t) else float("nan")
         if tr.status != "OK":
-            notes.append(f"at k = {kb:g} |x| grew to {xmax:.3g} m with every output finite and fmi2OK, then the FMU refused: "
+            notes.append(f"at k = {kb:g} |x| grew to {xmax:.3g} m with every output finite and fmi2OK, "
+                         "then the FMU refused: "
                          f"{tr.failed_call} → fmi2{tr.status}: “{tr.message}”")
         else:
-            notes.append(f"at k = {kb:g} |x| grew to {xmax:.3g} m by t = {tr.t[-1]:g} s, every output finite with fmi2OK")
+            notes.append(f"at k = {kb:g} |x| grew to {xmax:.3g} m by t = {tr.t[-1]:g} s, "
+                         "every output finite with fmi2OK")
         notes.append("the divergence is the master's explicit coupling, not the FMU's")
     if stable:
         notes.insert(0, f"stable for k ≤ {max(stable):g}")
@@ -946,7 +991,8 @@ def run_case(args):
         adaptive = "solver.tolerance" in model.vars and (name in ADAPTIVE_NAMES or "adaptive" in description.lower())
         start = {"solver.tolerance": ADAPTIVE_TOLERANCE} if adaptive else {}
         if value not in names:
-            rows.append({"case": case.key, "method": name, "outcome": "FAILS", "error": "—", "drift": None, "qnorm": None,
+            rows.append({"case": case.key, "method": name, "outcome": "FAILS", "error": "—", "drift": None,
+                         "qnorm": None,
                          "time": 0.0, "note": "method missing from this FMU's SolverMethod"})
             continue
         if case.driver is not None:
@@ -993,17 +1039,24 @@ def write_table(path, all_cases, methods, rows, quick, peers, elapsed):
     lines = []
     lines.append("# Stability stress suite")
     lines.append("")
-    lines.append(f"Written by `python/rigidfmu/reports/stability.py{' --quick' if quick else ''}` (run it through `./scripts/stress.sh`); "
+    lines.append(f"Written by `python/rigidfmu/reports/stability.py{' --quick' if quick else ''}` "
+                 "(run it through `./scripts/stress.sh`); "
                  f"{len(all_cases)} cases × {len(names)} methods ({', '.join(names)}, read from the modelDescription's "
                  f"`SolverMethod`), {elapsed:.0f} s in all. "
-                 + ("Quick mode: shorter runs (1e5 instead of 1e7 steps, 20 s instead of 100 s of tumbling, fewer communication steps)."
+                 + ("Quick mode: shorter runs (1e5 instead of 1e7 steps, 20 s instead of 100 s of tumbling, "
+                    "fewer communication steps)."
                     if quick else "Full mode."))
     lines.append("")
-    lines.append("Outcomes: **holds** — every criterion met, every call fmi2OK; **sub-stepped** — every criterion met and the FMU "
-                 "took more internal steps than T / solver.step (`solver.steps`, ×ratio) or said so in its log; **refused** — "
-                 "fmi2Discard / fmi2Error with a message (quoted below) before any criterion was broken; **FAILS** — a non-finite "
-                 "output with fmi2OK, a criterion broken while fmi2OK (an energy blow-up reported as fmi2OK is one), or a refusal "
-                 "without a message. Every run checks |q| − 1 ≤ 1e-12 and that every Real output is finite at every communication point.")
+    lines.append("Outcomes: **holds** — every criterion met, every call fmi2OK; **sub-stepped** — "
+                 "every criterion met and the FMU "
+                 "took more internal steps than T / solver.step (`solver.steps`, ×ratio) or said so in its log; "
+                 "**refused** — "
+                 "fmi2Discard / fmi2Error with a message (quoted below) before any criterion was broken; "
+                 "**FAILS** — a non-finite "
+                 "output with fmi2OK, a criterion broken while fmi2OK (an energy blow-up reported as fmi2OK is one), "
+                 "or a refusal "
+                 "without a message. Every run checks |q| − 1 ≤ 1e-12 and that every Real output is finite "
+                 "at every communication point.")
     lines.append("")
     lines.append("## Summary")
     lines.append("")
@@ -1027,9 +1080,11 @@ def write_table(path, all_cases, methods, rows, quick, peers, elapsed):
         lines.append("")
     lines.append("## Every run")
     lines.append("")
-    lines.append("Energy drift: (E − E0) / scale at the communication point where its magnitude is largest (signed: "
-                 "− is a loss), or for dissipative cases the largest gain (the scale is named with each case). Run time: "
-                 "the stepping loop through fmpy, reading every output at every communication point (full mode: median of {REPEATS} runs; quick mode: one run). Peers: MuJoCo on the same problem where measured (full mode).")
+    lines.append("Energy drift: (E − E0) / scale at the communication point where its magnitude is largest (signed: − "
+                 "is a loss), or for dissipative cases the largest gain (the scale is named with each case). Run time: "
+                 "the stepping loop through fmpy, reading every output at every communication point (full mode: median "
+                 "of {REPEATS} runs; quick mode: one run). "
+                 "Peers: MuJoCo on the same problem where measured (full mode).")
     lines.append("")
     lines.append("| case | method | outcome | error | energy drift | max \\|q\\|−1 | run time | peers | details |")
     lines.append("|---|---|---|---|---:|---:|---:|---|---|")
@@ -1056,12 +1111,14 @@ def write_table(path, all_cases, methods, rows, quick, peers, elapsed):
         lines.append("")
     lines.append("## Reading the table")
     lines.append("")
-    lines.append("- The stiff spring's divergence is the master's: it holds the force over a communication step (explicit "
-                 "coupling), which makes the sampled-data loop unstable once k is large for H; the continuous system is stable "
-                 "for every k. The suite checks that the FMU itself never answered fmi2OK with a non-finite value while the loop "
-                 "diverged, and reports the k at which the loop broke beside the prediction from the map's spectral radius.")
-    lines.append("- Torque-free cases keep the world angular momentum L constant by construction (L' = T = 0), so their energy "
-                 "error comes from the orientation only: it is bounded by the inertia ratio but can reach it (the needle: 1e6).")
+    lines.append("- The stiff spring's divergence is the master's: it holds the force over a communication step "
+                 "(explicit coupling), which makes the sampled-data loop unstable once k is large for H; the "
+                 "continuous system is stable for every k. The suite checks that the FMU itself never answered fmi2OK "
+                 "with a non-finite value while the loop diverged, and reports the k at which the loop broke beside "
+                 "the prediction from the map's spectral radius.")
+    lines.append("- Torque-free cases keep the world angular momentum L constant by construction (L' = T = 0), so "
+                 "their energy error comes from the orientation only: it is bounded by the inertia ratio but can reach "
+                 "it (the needle: 1e6).")
     pathlib.Path(path).parent.mkdir(parents=True, exist_ok=True)
     pathlib.Path(path).write_text("\n".join(lines) + "\n")
 
@@ -1111,7 +1168,8 @@ def main(argv=None, prog=None):
             package(build, folder, all_cases[i].scene)
         jobs = [(i, args.quick, str(build), folder, methods) for i in chosen]
         # long cases first, so that two workers finish together
-        jobs.sort(key=lambda j: -all_cases[j[0]].T / max(all_cases[j[0]].step, 1e-12) if all_cases[j[0]].driver is None else 0)
+        jobs.sort(key=lambda j: (-all_cases[j[0]].T / max(all_cases[j[0]].step, 1e-12)
+                                 if all_cases[j[0]].driver is None else 0))
         rows_by_case = {}
         if args.jobs > 1 and len(jobs) > 1:
             with ProcessPoolExecutor(args.jobs) as pool:

@@ -98,9 +98,24 @@ def cmd_report(args) -> int:
     return module.main(args.args, prog=f"rigidfmu report {args.kind}") or 0
 
 
-def cmd_study(args) -> int:
-    from rigidfmu.study import run
+# The study's own dependencies, pyproject.toml's "study" extra: `pip install rigidfmu`
+# leaves them out, so the command names the install that brings them instead of failing
+# with an ImportError, or only once the runs start (dask and distributed are imported
+# when the cluster is reached).
+STUDY_MODULES = ("dask", "distributed", "pandas", "pyarrow", "tqdm")
+STUDY_INSTALL = "pip install 'rigidfmu[study]'"
 
+
+def cmd_study(args) -> int:
+    import importlib.util
+
+    missing = [m for m in STUDY_MODULES if importlib.util.find_spec(m) is None]
+    if missing:
+        return fail(f"study: needs {', '.join(missing)}, not installed: {STUDY_INSTALL}")
+    try:
+        from rigidfmu.study import run
+    except ModuleNotFoundError as e:  # installed, but incompletely (a submodule or one of theirs)
+        return fail(f"study: cannot import {e.name}: {STUDY_INSTALL}")
     return run.main(args.args, prog="rigidfmu study") or 0
 
 

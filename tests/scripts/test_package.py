@@ -2,9 +2,11 @@
 and exit status, and the package installed into a fresh venv that builds and
 simulates an FMU from a folder outside this source tree, the same FMU as
 scripts/build_fmu.sh makes."""
+import ast
 import json
 import os
 import pathlib
+import re
 import subprocess
 import sys
 import tomllib
@@ -13,6 +15,8 @@ import zipfile
 import numpy as np
 import pytest
 from fmpy import simulate_fmu
+
+from rigidfmu import cli
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 BUILD = pathlib.Path(os.environ.get("RIGIDFMU_BUILD", ROOT / "build")).resolve()
@@ -51,6 +55,59 @@ def test_report_and_study_usage_errors_and_failures():
     assert missing.returncode == 1, missing.stderr
     assert missing.stderr.startswith("rigidfmu: study: no-such-study.json:"), missing.stderr
     assert "Traceback" not in missing.stderr
+
+
+@pytest.mark.parametrize("absent, message", [
+    ("pandas", "needs pandas, not installed"),
+    ("dask", "needs dask, not installed"),  # imported only once the runs start: looked for first
+    ("pyarrow.parquet", "cannot import pyarrow.parquet"),  # a package there, but incomplete
+])
+def test_study_without_its_dependencies_names_the_extra(absent, message):
+    """A None in sys.modules makes a module unimportable, as if it were not installed."""
+    code = (f"import sys; sys.modules[{absent!r}] = None\n"
+            "from rigidfmu.cli import main\n"
+            "sys.exit(main(['study', 'no-such-study.json']))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=ENV, cwd=ROOT)
+    assert done.returncode == 1, done.stderr
+    assert done.stderr == f"rigidfmu: study: {message}: pip install 'rigidfmu[study]'\n", done.stderr
+    assert done.stdout == ""
+
+
+def requirement(line):
+    """(normalised name, version) of a `name==version` pin (PEP 503 names)."""
+    name, sep, version = line.split("#")[0].strip().partition("==")
+    assert sep and version, f"not pinned: {line!r}"
+    return re.sub(r"[-_.]+", "-", name).lower(), version
+
+
+def test_pyproject_pins_agree_with_requirements():
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    pinned = dict(requirement(line) for line in (ROOT / "requirements.txt").read_text().splitlines()
+                  if line.strip() and not line.startswith("#"))
+    declared = project["dependencies"] + [d for group in project["optional-dependencies"].values() for d in group]
+    assert project["optional-dependencies"]["study"]
+    for dependency in declared:
+        name, version = requirement(dependency)
+        assert pinned.get(name) == version, f"pyproject.toml {dependency}, requirements.txt {pinned.get(name)}"
+
+
+def test_the_study_extra_holds_what_the_study_imports():
+    """Every module from outside the standard library and this package that
+    python/rigidfmu/study imports is a dependency of the package or of its study extra,
+    the extra holds nothing else, and the command looks for exactly those."""
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    imported = set()
+    for source in (ROOT / "python" / "rigidfmu" / "study").glob("*.py"):
+        for node in ast.walk(ast.parse(source.read_text())):
+            if isinstance(node, ast.Import):
+                imported |= {a.name.split(".")[0] for a in node.names}
+            elif isinstance(node, ast.ImportFrom) and node.level == 0:
+                imported.add(node.module.split(".")[0])
+    third_party = imported - set(sys.stdlib_module_names) - {"rigidfmu"}
+    base = {requirement(d)[0] for d in project["dependencies"]}
+    extra = {requirement(d)[0] for d in project["optional-dependencies"]["study"]}
+    assert third_party - base == extra
+    assert set(cli.STUDY_MODULES) == extra
 
 
 def test_help_imports_neither_matplotlib_nor_dask():

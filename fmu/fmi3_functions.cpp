@@ -90,6 +90,7 @@ template <class Body>
 fmi3Status run(fmi3Instance instance, const char* function, unsigned states, Body body) {
   Fmi3Instance* fmu = fmuOf(instance);
   if (!fmu || !fmu->core) return fmi3Error;
+  fmu->core->nameCall(function);
   return static_cast<fmi3Status>(rigidfmu::guarded(fmu->core.get(), function, states, body));
 }
 

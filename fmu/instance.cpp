@@ -111,6 +111,10 @@ fmi2Status Instance::error(const std::string& message) const {
   return fmi2Error;
 }
 
+fmi2Status Instance::error(const char* function, const std::string& message) const {
+  return error(std::string(called(function)) + ": " + message);
+}
+
 bool Instance::allowedIn(unsigned allowed, const char* function) {
   if (state_ & allowed) {
     log(fmi2OK, "logCalls", function);
@@ -123,13 +127,13 @@ bool Instance::allowedIn(unsigned allowed, const char* function) {
 fmi2Status Instance::setDebugLogging(fmi2Boolean loggingOn, size_t n, const fmi2String categories[]) {
   loggingOn_ = loggingOn == fmi2True;
   if (n == 0) return fmi2OK;  // all categories keep their setting
-  if (!categories) return error("fmi2SetDebugLogging: categories is NULL with nCategories > 0");
+  if (!categories) return error("fmi2SetDebugLogging", "categories is NULL with nCategories > 0");
   std::set<std::string> chosen;
   for (size_t i = 0; i < n; ++i) {
     const std::string c = categories[i] ? categories[i] : "";
     bool known = false;
     for (int k = 0; k < kLogCategoryCount; ++k) known |= c == kLogCategories[k].name;
-    if (!known) return error("fmi2SetDebugLogging: unknown log category \"" + c + "\"");
+    if (!known) return error("fmi2SetDebugLogging", "unknown log category \"" + c + "\"");
     chosen.insert(c);
   }
   categories_ = chosen;
@@ -138,7 +142,7 @@ fmi2Status Instance::setDebugLogging(fmi2Boolean loggingOn, size_t n, const fmi2
 
 fmi2Status Instance::setupExperiment(fmi2Boolean toleranceDefined, fmi2Real tolerance, fmi2Real startTime, fmi2Boolean,
                                      fmi2Real) {
-  if (!std::isfinite(startTime)) return error("fmi2SetupExperiment: startTime must be finite, got " + num(startTime));
+  if (!std::isfinite(startTime)) return error("fmi2SetupExperiment", "startTime must be finite, got " + num(startTime));
   if (toleranceDefined)
     log(fmi2OK, "logEvents", "tolerance " + num(tolerance) + " noted; the fixed-step methods use solver.step instead");
   startTime_ = time_ = lastSuccessfulTime_ = startTime;
@@ -224,9 +228,9 @@ fmi2Status Instance::write(const Variable& v, double value) {
 }
 
 fmi2Status Instance::getReal(const fmi2ValueReference vr[], size_t n, fmi2Real value[]) {
-  if (n && (!vr || !value)) return error("fmi2GetReal: vr or value is NULL");
+  if (n && (!vr || !value)) return error("fmi2GetReal", "vr or value is NULL");
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup("fmi2GetReal", vr[i], false);
+    const Variable* v = lookup(called("fmi2GetReal"), vr[i], false);
     if (!v) return fmi2Error;
     value[i] = read(*v);
   }
@@ -234,9 +238,9 @@ fmi2Status Instance::getReal(const fmi2ValueReference vr[], size_t n, fmi2Real v
 }
 
 fmi2Status Instance::getInteger(const fmi2ValueReference vr[], size_t n, fmi2Integer value[]) {
-  if (n && (!vr || !value)) return error("fmi2GetInteger: vr or value is NULL");
+  if (n && (!vr || !value)) return error("fmi2GetInteger", "vr or value is NULL");
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup("fmi2GetInteger", vr[i], true);
+    const Variable* v = lookup(called("fmi2GetInteger"), vr[i], true);
     if (!v) return fmi2Error;
     value[i] = static_cast<fmi2Integer>(read(*v));
   }
@@ -244,9 +248,9 @@ fmi2Status Instance::getInteger(const fmi2ValueReference vr[], size_t n, fmi2Int
 }
 
 fmi2Status Instance::setReal(const fmi2ValueReference vr[], size_t n, const fmi2Real value[]) {
-  if (n && (!vr || !value)) return error("fmi2SetReal: vr or value is NULL");
+  if (n && (!vr || !value)) return error("fmi2SetReal", "vr or value is NULL");
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup("fmi2SetReal", vr[i], false);
+    const Variable* v = lookup(called("fmi2SetReal"), vr[i], false);
     if (!v) return fmi2Error;
     if (const fmi2Status s = write(*v, value[i]); s != fmi2OK) return s;
   }
@@ -254,9 +258,9 @@ fmi2Status Instance::setReal(const fmi2ValueReference vr[], size_t n, const fmi2
 }
 
 fmi2Status Instance::setInteger(const fmi2ValueReference vr[], size_t n, const fmi2Integer value[]) {
-  if (n && (!vr || !value)) return error("fmi2SetInteger: vr or value is NULL");
+  if (n && (!vr || !value)) return error("fmi2SetInteger", "vr or value is NULL");
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup("fmi2SetInteger", vr[i], true);
+    const Variable* v = lookup(called("fmi2SetInteger"), vr[i], true);
     if (!v) return fmi2Error;
     if (const fmi2Status s = write(*v, value[i]); s != fmi2OK) return s;
   }
@@ -287,20 +291,20 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h, bool returnEarlyAtImpact) {
 }
 
 fmi2Status Instance::checkStep(fmi2Real tc, fmi2Real h) const {
-  if (!std::isfinite(tc)) return error("fmi2DoStep: currentCommunicationPoint must be finite, got " + num(tc));
+  if (!std::isfinite(tc)) return error("fmi2DoStep", "currentCommunicationPoint must be finite, got " + num(tc));
   if (!std::isfinite(h) || h <= 0.0)
-    return error("fmi2DoStep: communicationStepSize must be > 0 and finite, got " + num(h));
+    return error("fmi2DoStep", "communicationStepSize must be > 0 and finite, got " + num(h));
   // Masters that accumulate time send points that jitter by a few ulps: accept them.
   const double tolerance = 1e-9 * std::max(1.0, std::abs(time_));
   if (std::abs(tc - time_) > tolerance)
-    return error("fmi2DoStep: currentCommunicationPoint " + num(tc) + " is not the FMU's time " + num(time_) +
-                 " (tolerance " + num(tolerance) + ")");
+    return error("fmi2DoStep", "currentCommunicationPoint " + num(tc) + " is not the FMU's time " + num(time_) +
+                                   " (tolerance " + num(tolerance) + ")");
   // friction set since the last step: mu_k <= mu_s, checked now that both are set
-  if (const std::string why = frictionConflict(model_); !why.empty()) return error("fmi2DoStep: " + why);
+  if (const std::string why = frictionConflict(model_); !why.empty()) return error("fmi2DoStep", why);
   const double ratio = h / model_.maxStep;
   if (ratio > 1e12)
-    return error("fmi2DoStep: communicationStepSize " + num(h) +
-                 " s needs more than 1e12 steps of solver.step = " + num(model_.maxStep) + " s");
+    return error("fmi2DoStep", "communicationStepSize " + num(h) +
+                                   " s needs more than 1e12 steps of solver.step = " + num(model_.maxStep) + " s");
   return fmi2OK;
 }
 
@@ -313,9 +317,9 @@ fmi2Status Instance::discardStep(fmi2Real tc, const Interval& run) {
                                ? " (inputs or parameters out of range, e.g. " + model_.bodies[r.body].name + ".force)"
                                : "";
   log(fmi2Discard, "logStatusDiscard",
-      "fmi2DoStep: " + stepFailure(r, run.to - run.from) + " after the internal step from t = " + num(tc + run.from) +
-          " to " + num(tc + run.to) + " s" + hint + "; the FMU stays at t = " + num(time_) +
-          " s and must be reset or terminated");
+      std::string(called("fmi2DoStep")) + ": " + stepFailure(r, run.to - run.from) +
+          " after the internal step from t = " + num(tc + run.from) + " to " + num(tc + run.to) + " s" + hint +
+          "; the FMU stays at t = " + num(time_) + " s and must be reset or terminated");
   return fmi2Discard;
 }
 
@@ -385,7 +389,7 @@ Instance::Interval Instance::advance(double h, bool report, bool stopAtImpact) {
 fmi2Status Instance::getDirectionalDerivative(const fmi2ValueReference unknown[], size_t nUnknown,
                                               const fmi2ValueReference known[], size_t nKnown, const fmi2Real dvKnown[],
                                               fmi2Real dvUnknown[]) {
-  const char* fn = "fmi2GetDirectionalDerivative";
+  const char* fn = called("fmi2GetDirectionalDerivative");
   if ((nUnknown && (!unknown || !dvUnknown)) || (nKnown && (!known || !dvKnown)))
     return error(std::string(fn) + ": an array is NULL");
   std::vector<const Variable*> ins, outs;
@@ -448,9 +452,9 @@ Snapshot* Instance::ownState(fmi2FMUstate state, const char* function) const {
 }
 
 fmi2Status Instance::getState(fmi2FMUstate* state) {
-  if (!state) return error("fmi2GetFMUstate: FMUstate is NULL");
+  if (!state) return error("fmi2GetFMUstate", "FMUstate is NULL");
   Snapshot* s = static_cast<Snapshot*>(*state);
-  if (s && !states_.count(s)) return error("fmi2GetFMUstate: *FMUstate is not a state of this instance");
+  if (s && !states_.count(s)) return error("fmi2GetFMUstate", "*FMUstate is not a state of this instance");
   if (!s) {
     owned_.push_back(std::make_unique<Snapshot>());
     s = owned_.back().get();
@@ -462,7 +466,7 @@ fmi2Status Instance::getState(fmi2FMUstate* state) {
 }
 
 fmi2Status Instance::setState(fmi2FMUstate state) {
-  const Snapshot* s = ownState(state, "fmi2SetFMUstate");
+  const Snapshot* s = ownState(state, called("fmi2SetFMUstate"));
   if (!s) return fmi2Error;
   model_ = s->model;
   data_ = s->data;
@@ -477,9 +481,9 @@ fmi2Status Instance::setState(fmi2FMUstate state) {
 }
 
 fmi2Status Instance::freeState(fmi2FMUstate* state) {
-  if (!state) return error("fmi2FreeFMUstate: FMUstate is NULL");
+  if (!state) return error("fmi2FreeFMUstate", "FMUstate is NULL");
   if (!*state) return fmi2OK;  // nothing to free
-  Snapshot* s = ownState(*state, "fmi2FreeFMUstate");
+  Snapshot* s = ownState(*state, called("fmi2FreeFMUstate"));
   if (!s) return fmi2Error;
   states_.erase(s);
   for (auto it = owned_.begin(); it != owned_.end(); ++it)
@@ -492,36 +496,38 @@ fmi2Status Instance::freeState(fmi2FMUstate* state) {
 }
 
 fmi2Status Instance::serializedStateSize(fmi2FMUstate state, size_t* size) {
-  const Snapshot* s = ownState(state, "fmi2SerializedFMUstateSize");
+  const Snapshot* s = ownState(state, called("fmi2SerializedFMUstateSize"));
   if (!s) return fmi2Error;
-  if (!size) return error("fmi2SerializedFMUstateSize: size is NULL");
+  if (!size) return error("fmi2SerializedFMUstateSize", "size is NULL");
   *size = serialize(*s, guid_).size();
   return fmi2OK;
 }
 
 fmi2Status Instance::serializeState(fmi2FMUstate state, fmi2Byte bytes[], size_t size) {
-  const Snapshot* s = ownState(state, "fmi2SerializeFMUstate");
+  const Snapshot* s = ownState(state, called("fmi2SerializeFMUstate"));
   if (!s) return fmi2Error;
   const std::vector<char> b = serialize(*s, guid_);
   if (!bytes || size < b.size())
-    return error("fmi2SerializeFMUstate: the buffer holds " + std::to_string(size) + " bytes, the state needs " +
-                 std::to_string(b.size()) + " (fmi2SerializedFMUstateSize)");
+    return error("fmi2SerializeFMUstate",
+                 "the buffer holds " + std::to_string(size) + " bytes, the state needs " + std::to_string(b.size()) +
+                     (call_ ? " (fmi3SerializedFMUStateSize)" : " (fmi2SerializedFMUstateSize)"));
   std::copy(b.begin(), b.end(), bytes);
   return fmi2OK;
 }
 
 fmi2Status Instance::deserializeState(const fmi2Byte bytes[], size_t size, fmi2FMUstate* state) {
-  if (!state) return error("fmi2DeSerializeFMUstate: FMUstate is NULL");
+  if (!state) return error("fmi2DeSerializeFMUstate", "FMUstate is NULL");
   // A fresh instance of the same scene is the frame the bytes are read into.
   Snapshot s{scene_.model, rigid::initialData(scene_.model), kInstantiated, 0.0, 0.0, 0.0, false, 0.0};
   const std::string why = deserialize(bytes, size, guid_, s);
-  if (!why.empty()) return error("fmi2DeSerializeFMUstate: " + why);
+  if (!why.empty()) return error("fmi2DeSerializeFMUstate", why);
   const unsigned known = kInstantiated | kInitializationMode | kStepComplete | kStepFailed | kTerminated | kError;
   if (__builtin_popcount(s.machineState) != 1 || !(s.machineState & known))
-    return error("fmi2DeSerializeFMUstate: the state holds an unknown machine state " + std::to_string(s.machineState));
+    return error("fmi2DeSerializeFMUstate",
+                 "the state holds an unknown machine state " + std::to_string(s.machineState));
   Snapshot* target = static_cast<Snapshot*>(*state);
   if (target && !states_.count(target))
-    return error("fmi2DeSerializeFMUstate: *FMUstate is not a state of this instance");
+    return error("fmi2DeSerializeFMUstate", "*FMUstate is not a state of this instance");
   if (!target) {
     owned_.push_back(std::make_unique<Snapshot>());
     target = owned_.back().get();
@@ -534,18 +540,18 @@ fmi2Status Instance::deserializeState(const fmi2Byte bytes[], size_t size, fmi2F
 
 fmi2Status Instance::setInputDerivatives(const fmi2ValueReference vr[], size_t n, const fmi2Integer order[],
                                          const fmi2Real value[]) {
-  if (n && (!vr || !order || !value)) return error("fmi2SetRealInputDerivatives: an array is NULL");
+  if (n && (!vr || !order || !value)) return error("fmi2SetRealInputDerivatives", "an array is NULL");
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup("fmi2SetRealInputDerivatives", vr[i], false);
+    const Variable* v = lookup(called("fmi2SetRealInputDerivatives"), vr[i], false);
     if (!v) return fmi2Error;
-    if (v->causality != Causality::Input) return error("fmi2SetRealInputDerivatives: " + v->name + " is not an input");
+    if (v->causality != Causality::Input) return error("fmi2SetRealInputDerivatives", v->name + " is not an input");
     if (order[i] != 1)
-      return error("fmi2SetRealInputDerivatives: " + v->name +
-                   ": only first-order derivatives "
-                   "(order 1) are interpolated, got order " +
-                   std::to_string(order[i]));
+      return error("fmi2SetRealInputDerivatives", v->name +
+                                                      ": only first-order derivatives "
+                                                      "(order 1) are interpolated, got order " +
+                                                      std::to_string(order[i]));
     if (!std::isfinite(value[i]))
-      return error("fmi2SetRealInputDerivatives: " + v->name + ": must be finite, got " + num(value[i]));
+      return error("fmi2SetRealInputDerivatives", v->name + ": must be finite, got " + num(value[i]));
     rigid::BodyInput& rate = data_.inputRate[v->body];
     rigid::Vec3& of = v->quantity == Quantity::Force    ? rate.force
                       : v->quantity == Quantity::Torque ? rate.torque
@@ -557,19 +563,18 @@ fmi2Status Instance::setInputDerivatives(const fmi2ValueReference vr[], size_t n
 
 fmi2Status Instance::getOutputDerivatives(const fmi2ValueReference vr[], size_t n, const fmi2Integer order[],
                                           fmi2Real value[]) {
-  if (n && (!vr || !order || !value)) return error("fmi2GetRealOutputDerivatives: an array is NULL");
+  if (n && (!vr || !order || !value)) return error("fmi2GetRealOutputDerivatives", "an array is NULL");
   // dY/dt at the current state and inputs: the same force stage as the integrators.
   std::vector<rigid::BodyAux> aux(data_.Y.size());
   std::vector<rigid::BodyDerivative> dY(data_.Y.size());
   rigid::evaluateDerivative(model_, data_.input, data_.Y, aux, dY);
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup("fmi2GetRealOutputDerivatives", vr[i], false);
+    const Variable* v = lookup(called("fmi2GetRealOutputDerivatives"), vr[i], false);
     if (!v) return fmi2Error;
-    if (v->causality != Causality::Output)
-      return error("fmi2GetRealOutputDerivatives: " + v->name + " is not an output");
+    if (v->causality != Causality::Output) return error("fmi2GetRealOutputDerivatives", v->name + " is not an output");
     if (order[i] != 1)
-      return error("fmi2GetRealOutputDerivatives: " + v->name + ": MaxOutputDerivativeOrder is 1, got order " +
-                   std::to_string(order[i]));
+      return error("fmi2GetRealOutputDerivatives",
+                   v->name + ": MaxOutputDerivativeOrder is 1, got order " + std::to_string(order[i]));
     const int b = v->body, c = v->component;
     const rigid::BodyAux& a = aux[b];
     switch (v->quantity) {
@@ -598,14 +603,14 @@ void Instance::noteSubsteps(const rigid::StepResult& r, double h) {
                                                        " is outside its stability region (" + r.cause + ")";
   if (r.substeps > 1)
     log(fmi2Warning, "logStatusWarning",
-        "fmi2DoStep: " + why + " at the internal step of " + num(h) + " s; sub-stepping it " +
+        std::string(called("fmi2DoStep")) + ": " + why + " at the internal step of " + num(h) + " s; sub-stepping it " +
             std::to_string(r.substeps) + " times (steps of at most " + num(r.stableStep) + " s; see solver.steps)");
   else
-    log(fmi2OK, "logEvents", "fmi2DoStep: no sub-stepping needed any more");
+    log(fmi2OK, "logEvents", std::string(called("fmi2DoStep")) + ": no sub-stepping needed any more");
 }
 
 fmi2Status Instance::getRealStatus(int kind, fmi2Real* value) {
-  if (!value) return error("fmi2GetRealStatus: value is NULL");
+  if (!value) return error("fmi2GetRealStatus", "value is NULL");
   if (kind != fmi2LastSuccessfulTime) {
     log(fmi2Discard, "logStatusDiscard", "fmi2GetRealStatus: only fmi2LastSuccessfulTime is provided");
     return fmi2Discard;
@@ -615,7 +620,7 @@ fmi2Status Instance::getRealStatus(int kind, fmi2Real* value) {
 }
 
 fmi2Status Instance::getBooleanStatus(int kind, fmi2Boolean* value) {
-  if (!value) return error("fmi2GetBooleanStatus: value is NULL");
+  if (!value) return error("fmi2GetBooleanStatus", "value is NULL");
   if (kind != fmi2Terminated) {
     log(fmi2Discard, "logStatusDiscard", "fmi2GetBooleanStatus: only fmi2Terminated is provided");
     return fmi2Discard;

@@ -91,6 +91,13 @@ class Instance {
   void log(fmi2Status status, const char* category, const std::string& message) const;
   // Logs an error and returns fmi2Error.
   fmi2Status error(const std::string& message) const;
+  // The same, the message after the name of the function that refused (called()).
+  fmi2Status error(const char* function, const std::string& message) const;
+  // The FMI 3 adapter names each call it makes on this instance (fmi3DoStep, ...):
+  // the messages of the FMI 2 functions it maps onto then name the function the
+  // importer called, not fmi2DoStep. An FMI 2 instance names none.
+  void nameCall(const char* fmi3Function) { call_ = fmi3Function; }
+  const char* called(const char* fmi2Function) const { return call_ ? call_ : fmi2Function; }
   void enterErrorState() { state_ = kError; }
 
  private:
@@ -128,6 +135,7 @@ class Instance {
   fmi2CallbackFunctions functions_;
   bool loggingOn_;
   std::set<std::string> categories_;  // enabled debug categories
+  const char* call_ = nullptr;        // the FMI 3 call in progress (nameCall), a literal
 
   rigid::Scene scene_;  // as read from the resources, for fmi2Reset
   std::vector<Variable> vars_;

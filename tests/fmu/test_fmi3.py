@@ -206,7 +206,13 @@ def test_bad_calls_are_refused_with_a_message_and_the_instance_goes_on(fmu_of, t
     assert status_of(lambda: s.enterEventMode()) == "Error"
     assert "fmi3EnterEventMode: not supported" in fmu.log.text()
     assert status_of(lambda: s.doStep(0.0, -0.01)) == "Error"
-    assert "communicationStepSize must be > 0" in fmu.log.text()
+    assert "fmi3DoStep: communicationStepSize must be > 0" in fmu.log.text()
+    assert status_of(lambda: s.doStep(0.5, 0.01)) == "Error"
+    assert "fmi3DoStep: currentCommunicationPoint 0.5 is not the FMU's time 0" in fmu.log.text()
+    assert status_of(lambda: s.setFMUState(None)) == "Error"
+    # every message names the function the importer called, none the FMI 2 function
+    # that answers it inside the FMU
+    assert "fmi2" not in fmu.log.text(), fmu.log.text()
     # a refused call leaves the instance as it was: it steps on
     event, terminate, early, reached = fmu.step(0.01)
     assert (event, terminate, early) == (False, False, False) and reached == pytest.approx(0.01, abs=1e-15)

@@ -46,9 +46,8 @@ inline fmi2Status guarded(fmi2Component c, const char* function, unsigned allowe
 }
 
 inline fmi2Status unsupported(fmi2Component c, const char* function, unsigned states, const char* why) {
-  return guarded(c, function, states, [&](Instance& i) {
-    return i.error(std::string(function) + ": not supported (" + why + ")");
-  });
+  return guarded(c, function, states,
+                 [&](Instance& i) { return i.error(std::string(function) + ": not supported (" + why + ")"); });
 }
 
 }  // namespace rigidfmu

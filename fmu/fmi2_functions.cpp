@@ -3,14 +3,14 @@
 #include <exception>
 #include <string>
 
-#include "fmi2Functions.h"
 #include "entry_guard.h"
+#include "fmi2Functions.h"
 #include "fmi2_states.h"
 #include "instance.h"
 
-using rigidfmu::Instance;
 using rigidfmu::enumBits;
 using rigidfmu::guarded;
+using rigidfmu::Instance;
 using rigidfmu::unsupported;
 namespace allowed = rigidfmu::fmi2_allowed;
 
@@ -20,25 +20,21 @@ const char* fmi2GetTypesPlatform(void) { return fmi2TypesPlatform; }
 const char* fmi2GetVersion(void) { return fmi2Version; }
 
 fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
-                              fmi2String fmuResourceLocation,
-                              const fmi2CallbackFunctions* functions, fmi2Boolean visible,
-                              fmi2Boolean loggingOn) {
+                              fmi2String fmuResourceLocation, const fmi2CallbackFunctions* functions,
+                              fmi2Boolean visible, fmi2Boolean loggingOn) {
   (void)visible;  // no user interface to show
   try {
-    return Instance::create(instanceName, enumBits(fmuType), fmuGUID, fmuResourceLocation, functions,
-                            loggingOn);
+    return Instance::create(instanceName, enumBits(fmuType), fmuGUID, fmuResourceLocation, functions, loggingOn);
   } catch (const std::exception& e) {
     if (functions && functions->logger)
-      functions->logger(functions->componentEnvironment, instanceName ? instanceName : "",
-                        fmi2Error, "logStatusError", "fmi2Instantiate failed: %s", e.what());
+      functions->logger(functions->componentEnvironment, instanceName ? instanceName : "", fmi2Error, "logStatusError",
+                        "fmi2Instantiate failed: %s", e.what());
   } catch (...) {
   }
   return nullptr;
 }
 
-void fmi2FreeInstance(fmi2Component c) {
-  delete static_cast<Instance*>(c);
-}
+void fmi2FreeInstance(fmi2Component c) { delete static_cast<Instance*>(c); }
 
 fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nCategories,
                                const fmi2String categories[]) {
@@ -46,8 +42,8 @@ fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nC
                  [&](Instance& i) { return i.setDebugLogging(loggingOn, nCategories, categories); });
 }
 
-fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fmi2Real tolerance,
-                               fmi2Real startTime, fmi2Boolean stopTimeDefined, fmi2Real stopTime) {
+fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fmi2Real tolerance, fmi2Real startTime,
+                               fmi2Boolean stopTimeDefined, fmi2Real stopTime) {
   return guarded(c, "fmi2SetupExperiment", allowed::SetupExperiment, [&](Instance& i) {
     return i.setupExperiment(toleranceDefined, tolerance, startTime, stopTimeDefined, stopTime);
   });
@@ -64,8 +60,7 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component c) {
 }
 
 fmi2Status fmi2Terminate(fmi2Component c) {
-  return guarded(c, "fmi2Terminate", allowed::Terminate,
-                 [](Instance& i) { return i.terminate(); });
+  return guarded(c, "fmi2Terminate", allowed::Terminate, [](Instance& i) { return i.terminate(); });
 }
 
 fmi2Status fmi2Reset(fmi2Component c) {
@@ -76,14 +71,11 @@ fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
   return guarded(c, "fmi2GetReal", allowed::GetReal, [&](Instance& i) { return i.getReal(vr, nvr, value); });
 }
 
-fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
-                          fmi2Integer value[]) {
-  return guarded(c, "fmi2GetInteger", allowed::GetInteger,
-                 [&](Instance& i) { return i.getInteger(vr, nvr, value); });
+fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Integer value[]) {
+  return guarded(c, "fmi2GetInteger", allowed::GetInteger, [&](Instance& i) { return i.getInteger(vr, nvr, value); });
 }
 
-fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
-                          fmi2Boolean[]) {
+fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Boolean[]) {
   return guarded(c, "fmi2GetBoolean", allowed::GetBoolean,
                  [&](Instance& i) { return i.noVariablesOfType("fmi2GetBoolean", vr, nvr); });
 }
@@ -93,25 +85,20 @@ fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
                  [&](Instance& i) { return i.noVariablesOfType("fmi2GetString", vr, nvr); });
 }
 
-fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
-                       const fmi2Real value[]) {
+fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Real value[]) {
   return guarded(c, "fmi2SetReal", allowed::SetReal, [&](Instance& i) { return i.setReal(vr, nvr, value); });
 }
 
-fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
-                          const fmi2Integer value[]) {
-  return guarded(c, "fmi2SetInteger", allowed::SetInteger,
-                 [&](Instance& i) { return i.setInteger(vr, nvr, value); });
+fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Integer value[]) {
+  return guarded(c, "fmi2SetInteger", allowed::SetInteger, [&](Instance& i) { return i.setInteger(vr, nvr, value); });
 }
 
-fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
-                          const fmi2Boolean[]) {
+fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Boolean[]) {
   return guarded(c, "fmi2SetBoolean", allowed::SetBoolean,
                  [&](Instance& i) { return i.noVariablesOfType("fmi2SetBoolean", vr, nvr); });
 }
 
-fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
-                         const fmi2String[]) {
+fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2String[]) {
   return guarded(c, "fmi2SetString", allowed::SetString,
                  [&](Instance& i) { return i.noVariablesOfType("fmi2SetString", vr, nvr); });
 }
@@ -135,14 +122,13 @@ fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate state, fmi2Byte b
   return guarded(c, "fmi2SerializeFMUstate", allowed::SerializeFMUstate,
                  [&](Instance& i) { return i.serializeState(state, bytes, size); });
 }
-fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte bytes[], size_t size,
-                                   fmi2FMUstate* state) {
+fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte bytes[], size_t size, fmi2FMUstate* state) {
   return guarded(c, "fmi2DeSerializeFMUstate", allowed::DeSerializeFMUstate,
                  [&](Instance& i) { return i.deserializeState(bytes, size, state); });
 }
 fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference unknown[], size_t nUnknown,
-                                        const fmi2ValueReference known[], size_t nKnown,
-                                        const fmi2Real dvKnown[], fmi2Real dvUnknown[]) {
+                                        const fmi2ValueReference known[], size_t nKnown, const fmi2Real dvKnown[],
+                                        fmi2Real dvUnknown[]) {
   return guarded(c, "fmi2GetDirectionalDerivative", allowed::GetDirectionalDerivative, [&](Instance& i) {
     return i.getDirectionalDerivative(unknown, nUnknown, known, nKnown, dvKnown, dvUnknown);
   });
@@ -158,11 +144,10 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReferenc
                  [&](Instance& i) { return i.getOutputDerivatives(vr, nvr, order, value); });
 }
 
-fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
-                      fmi2Real communicationStepSize, fmi2Boolean) {
-  return guarded(c, "fmi2DoStep", allowed::DoStep, [&](Instance& i) {
-    return i.doStep(currentCommunicationPoint, communicationStepSize);
-  });
+fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize,
+                      fmi2Boolean) {
+  return guarded(c, "fmi2DoStep", allowed::DoStep,
+                 [&](Instance& i) { return i.doStep(currentCommunicationPoint, communicationStepSize); });
 }
 
 fmi2Status fmi2CancelStep(fmi2Component c) {

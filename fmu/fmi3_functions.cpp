@@ -45,8 +45,8 @@ struct Fmi3Instance {
 };
 
 // The Instance's FMI 2 logger: the formatted message to the FMI 3 one.
-void forwardLog(fmi2ComponentEnvironment env, fmi2String, fmi2Status status, fmi2String category,
-                fmi2String message, ...) {
+void forwardLog(fmi2ComponentEnvironment env, fmi2String, fmi2Status status, fmi2String category, fmi2String message,
+                ...) {
   const auto* fmu = static_cast<const Fmi3Instance*>(env);
   if (!fmu || !fmu->logMessage) return;
   va_list args;
@@ -103,13 +103,13 @@ fmi3Status unsupported(fmi3Instance instance, const char* function, const char* 
 // nValues must equal nValueReferences: every variable is a scalar.
 bool scalars(Instance& i, const char* function, size_t nvr, size_t nValues) {
   if (nvr == nValues) return true;
-  i.error(std::string(function) + ": nValues = " + std::to_string(nValues) + " but nValueReferences = " +
-          std::to_string(nvr) + ": every variable of this FMU is a scalar");
+  i.error(std::string(function) + ": nValues = " + std::to_string(nValues) +
+          " but nValueReferences = " + std::to_string(nvr) + ": every variable of this FMU is a scalar");
   return false;
 }
 
 const char* useFor(BaseType t) {
-  return t == BaseType::Real ? "is a Float64, use fmi3Get/SetFloat64"
+  return t == BaseType::Real      ? "is a Float64, use fmi3Get/SetFloat64"
          : t == BaseType::Integer ? "is an Int32, use fmi3Get/SetInt32"
                                   : "is an Enumeration, use fmi3Get/SetInt64";
 }
@@ -134,7 +134,6 @@ bool allOfType(Instance& i, const char* function, const fmi3ValueReference vr[],
   }
   return true;
 }
-
 
 // Accessors of types this FMU has no variables of: every reference is unknown.
 fmi3Status noVariables(fmi3Instance instance, const char* function, unsigned states, const fmi3ValueReference vr[],
@@ -172,7 +171,8 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
                                          fmi3IntermediateUpdateCallback) {
   (void)visible, (void)eventModeUsed;  // no user interface; no events to handle
   auto refuse = [&](const std::string& why) -> fmi3Instance {
-    if (logMessage) logMessage(environment, fmi3Error, "logStatusError", ("fmi3InstantiateCoSimulation: " + why).c_str());
+    if (logMessage)
+      logMessage(environment, fmi3Error, "logStatusError", ("fmi3InstantiateCoSimulation: " + why).c_str());
     return nullptr;
   };
   try {
@@ -246,8 +246,8 @@ fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference vr[], 
   });
 }
 
-fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
-                          const fmi3Float64 values[], size_t nValues) {
+fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, const fmi3Float64 values[],
+                          size_t nValues) {
   return run(instance, "fmi3SetFloat64", allowed::Set, [&](Instance& i) {
     if (!scalars(i, "fmi3SetFloat64", nvr, nValues)) return fmi2Error;
     if (!allOfType(i, "fmi3SetFloat64", vr, nvr, BaseType::Real, "is not a Float64")) return fmi2Error;
@@ -278,8 +278,10 @@ fmi3Status fmi3GetInt64(fmi3Instance instance, const fmi3ValueReference vr[], si
                         size_t nValues) {
   return run(instance, "fmi3GetInt64", allowed::Get, [&](Instance& i) {
     if (!scalars(i, "fmi3GetInt64", nvr, nValues)) return fmi2Error;
-    if (!allOfType(i, "fmi3GetInt64", vr, nvr, BaseType::Enumeration, "is not an Enumeration (the Int64 accessor "
-                   "reads Enumerations only)")) return fmi2Error;
+    if (!allOfType(i, "fmi3GetInt64", vr, nvr, BaseType::Enumeration,
+                   "is not an Enumeration (the Int64 accessor "
+                   "reads Enumerations only)"))
+      return fmi2Error;
     std::vector<fmi2Integer> read(nvr);
     const fmi2Status s = i.getInteger(vr, nvr, read.data());
     if (s == fmi2OK)
@@ -292,8 +294,10 @@ fmi3Status fmi3SetInt64(fmi3Instance instance, const fmi3ValueReference vr[], si
                         size_t nValues) {
   return run(instance, "fmi3SetInt64", allowed::Set, [&](Instance& i) {
     if (!scalars(i, "fmi3SetInt64", nvr, nValues)) return fmi2Error;
-    if (!allOfType(i, "fmi3SetInt64", vr, nvr, BaseType::Enumeration, "is not an Enumeration (the Int64 accessor "
-                   "writes Enumerations only)")) return fmi2Error;
+    if (!allOfType(i, "fmi3SetInt64", vr, nvr, BaseType::Enumeration,
+                   "is not an Enumeration (the Int64 accessor "
+                   "writes Enumerations only)"))
+      return fmi2Error;
     std::vector<fmi2Integer> narrow(nvr);
     for (size_t k = 0; k < nvr; ++k) {
       if (values[k] < std::numeric_limits<fmi2Integer>::min() || values[k] > std::numeric_limits<fmi2Integer>::max())
@@ -306,13 +310,12 @@ fmi3Status fmi3SetInt64(fmi3Instance instance, const fmi3ValueReference vr[], si
 }
 
 // Types this FMU has no variables of.
-#define RIGIDFMU_NO_VARIABLES(Type, CType)                                                                    \
-  fmi3Status fmi3Get##Type(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, CType[], size_t) { \
-    return noVariables(instance, "fmi3Get" #Type, allowed::Get, vr, nvr);                                     \
-  }                                                                                                           \
-  fmi3Status fmi3Set##Type(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, const CType[],   \
-                           size_t) {                                                                          \
-    return noVariables(instance, "fmi3Set" #Type, allowed::Set, vr, nvr);                                     \
+#define RIGIDFMU_NO_VARIABLES(Type, CType)                                                                            \
+  fmi3Status fmi3Get##Type(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, CType[], size_t) {       \
+    return noVariables(instance, "fmi3Get" #Type, allowed::Get, vr, nvr);                                             \
+  }                                                                                                                   \
+  fmi3Status fmi3Set##Type(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, const CType[], size_t) { \
+    return noVariables(instance, "fmi3Set" #Type, allowed::Set, vr, nvr);                                             \
   }
 RIGIDFMU_NO_VARIABLES(Float32, fmi3Float32)
 RIGIDFMU_NO_VARIABLES(Int8, fmi3Int8)
@@ -368,9 +371,8 @@ fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState state, fmi3
              [&](Instance& i) { return i.serializeState(state, reinterpret_cast<fmi2Byte*>(bytes), size); });
 }
 fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte bytes[], size_t size, fmi3FMUState* state) {
-  return run(instance, "fmi3DeserializeFMUState", allowed::FMUState, [&](Instance& i) {
-    return i.deserializeState(reinterpret_cast<const fmi2Byte*>(bytes), size, state);
-  });
+  return run(instance, "fmi3DeserializeFMUState", allowed::FMUState,
+             [&](Instance& i) { return i.deserializeState(reinterpret_cast<const fmi2Byte*>(bytes), size, state); });
 }
 
 fmi3Status fmi3GetDirectionalDerivative(fmi3Instance instance, const fmi3ValueReference unknowns[], size_t nUnknowns,
@@ -378,9 +380,11 @@ fmi3Status fmi3GetDirectionalDerivative(fmi3Instance instance, const fmi3ValueRe
                                         size_t nSeed, fmi3Float64 sensitivity[], size_t nSensitivity) {
   return run(instance, "fmi3GetDirectionalDerivative", allowed::GetDirectionalDerivative, [&](Instance& i) {
     if (nSeed != nKnowns || nSensitivity != nUnknowns)
-      return i.error("fmi3GetDirectionalDerivative: nSeed must equal nKnowns and nSensitivity nUnknowns "
-                     "(every variable is a scalar), got " + std::to_string(nSeed) + "/" + std::to_string(nKnowns) +
-                     " and " + std::to_string(nSensitivity) + "/" + std::to_string(nUnknowns));
+      return i.error(
+          "fmi3GetDirectionalDerivative: nSeed must equal nKnowns and nSensitivity nUnknowns "
+          "(every variable is a scalar), got " +
+          std::to_string(nSeed) + "/" + std::to_string(nKnowns) + " and " + std::to_string(nSensitivity) + "/" +
+          std::to_string(nUnknowns));
     return i.getDirectionalDerivative(unknowns, nUnknowns, knowns, nKnowns, seed, sensitivity);
   });
 }
@@ -405,9 +409,11 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
                       fmi3Boolean* earlyReturn, fmi3Float64* lastSuccessfulTime) {
   return run(instance, "fmi3DoStep", allowed::DoStep, [&](Instance& i) {
     if (!eventHandlingNeeded || !terminateSimulation || !earlyReturn || !lastSuccessfulTime)
-      return i.error("fmi3DoStep: eventHandlingNeeded, terminateSimulation, earlyReturn and lastSuccessfulTime "
-                     "must not be NULL");
-    const fmi2Status s = i.doStep(currentCommunicationPoint, communicationStepSize, fmuOf(instance)->earlyReturnAllowed);
+      return i.error(
+          "fmi3DoStep: eventHandlingNeeded, terminateSimulation, earlyReturn and lastSuccessfulTime "
+          "must not be NULL");
+    const fmi2Status s =
+        i.doStep(currentCommunicationPoint, communicationStepSize, fmuOf(instance)->earlyReturnAllowed);
     fmi2Real reached = 0.0;
     fmi2Boolean terminated = fmi2False;
     i.getRealStatus(fmi2LastSuccessfulTime, &reached);
@@ -442,10 +448,8 @@ fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance instance) {
   return unsupported(instance, "fmi3EnterContinuousTimeMode", "this FMU implements Co-Simulation only");
 }
 
-#define RIGIDFMU_UNSUPPORTED(Name, Why, ...)                                            \
-  fmi3Status fmi3##Name(fmi3Instance instance, __VA_ARGS__) {                            \
-    return unsupported(instance, "fmi3" #Name, Why);                                     \
-  }
+#define RIGIDFMU_UNSUPPORTED(Name, Why, ...) \
+  fmi3Status fmi3##Name(fmi3Instance instance, __VA_ARGS__) { return unsupported(instance, "fmi3" #Name, Why); }
 #define RIGIDFMU_NO_CLOCKS "this FMU has no clocks"
 #define RIGIDFMU_NO_ME "this FMU implements Co-Simulation only"
 RIGIDFMU_UNSUPPORTED(GetIntervalDecimal, RIGIDFMU_NO_CLOCKS, const fmi3ValueReference[], size_t, fmi3Float64[],

@@ -20,9 +20,7 @@ class Writer {
   void put(const rigid::Vec3& v) {
     for (int i = 0; i < 3; ++i) put(v[i]);
   }
-  void put(const rigid::Quat& q) {
-    put(q.w()), put(q.x()), put(q.y()), put(q.z());
-  }
+  void put(const rigid::Quat& q) { put(q.w()), put(q.x()), put(q.y()), put(q.z()); }
   std::vector<char> bytes;
 };
 
@@ -128,8 +126,7 @@ std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
   w.put(s.model.maxStep), w.put(s.model.tolerance), w.put(s.model.energyGainLimit);
   for (const rigid::BodyConstants& b : s.model.bodies) {
     w.put(b.mass), w.put(b.restitution), w.put(b.staticFriction), w.put(b.kineticFriction);
-    w.put(b.start.position), w.put(b.start.orientation), w.put(b.start.velocity),
-        w.put(b.start.angularVelocity);
+    w.put(b.start.position), w.put(b.start.orientation), w.put(b.start.velocity), w.put(b.start.angularVelocity);
   }
   for (const rigid::Surface& f : s.model.surfaces)
     w.put(f.staticFriction), w.put(f.kineticFriction), w.put(f.restitution);
@@ -190,35 +187,34 @@ std::string deserialize(const char* bytes, size_t size, const std::string& guid,
   for (rigid::BodyConstants& b : out.model.bodies) {
     double mass = 0.0;
     ok = ok && r.get(mass) && r.get(b.restitution) && r.get(b.staticFriction) && r.get(b.kineticFriction) &&
-         r.get(b.start.position) &&
-         r.get(b.start.orientation) && r.get(b.start.velocity) && r.get(b.start.angularVelocity);
+         r.get(b.start.position) && r.get(b.start.orientation) && r.get(b.start.velocity) &&
+         r.get(b.start.angularVelocity);
     if (ok && !(mass > 0.0 && std::isfinite(mass))) return "the state holds a mass that is not > 0";
     if (ok) rigid::setMass(b, mass);  // Ibody follows, as when the parameter is set
   }
   for (rigid::Surface& f : out.model.surfaces)
     ok = ok && r.get(f.staticFriction) && r.get(f.kineticFriction) && r.get(f.restitution);
   for (rigid::Medium& m : out.model.media) ok = ok && r.get(m.density) && r.get(m.viscosity);
-  if (ok && !materialsInRange(out.model)) return "the state holds a friction, restitution or fluid property out of range";
+  if (ok && !materialsInRange(out.model))
+    return "the state holds a friction, restitution or fluid property out of range";
   for (uint32_t i = 0; i < n && ok; ++i) {
     rigid::BodyState& y = out.data.Y[i];
     int32_t contacts = 0, island = 0;
     uint8_t asleep = 0;
     ok = r.get(y.X) && r.get(y.q) && r.get(y.P) && r.get(y.L) && r.get(out.data.input[i].force) &&
-         r.get(out.data.input[i].torque) && r.get(out.data.inputRate[i].force) &&
-         r.get(out.data.inputRate[i].torque) && readLoads(r, out.data.input[i], out.data.inputRate[i]) &&
-         r.get(contacts) &&
-         r.get(out.data.audit.energy[i]) && r.get(out.data.audit.reference[i]) && r.get(out.data.audit.carried[i]) &&
-         r.get(asleep) && r.get(out.data.sleep.stillFor[i]) && r.get(island) &&
-         r.get(out.data.sleep.restForce[i]) && r.get(out.data.sleep.restTorque[i]) &&
-         r.get(out.data.contactLoads.impulse[i]) && r.get(out.data.contactLoads.angularImpulse[i]);
+         r.get(out.data.input[i].torque) && r.get(out.data.inputRate[i].force) && r.get(out.data.inputRate[i].torque) &&
+         readLoads(r, out.data.input[i], out.data.inputRate[i]) && r.get(contacts) && r.get(out.data.audit.energy[i]) &&
+         r.get(out.data.audit.reference[i]) && r.get(out.data.audit.carried[i]) && r.get(asleep) &&
+         r.get(out.data.sleep.stillFor[i]) && r.get(island) && r.get(out.data.sleep.restForce[i]) &&
+         r.get(out.data.sleep.restTorque[i]) && r.get(out.data.contactLoads.impulse[i]) &&
+         r.get(out.data.contactLoads.angularImpulse[i]);
     out.data.contacts[i] = contacts;
     if (ok && (asleep > 1 || island < -1 || island >= static_cast<int32_t>(n) || (asleep == 1) != (island >= 0)))
       return "the serialized state is corrupt (sleep of body " + std::to_string(i) + ")";
     out.data.sleep.asleep[i] = static_cast<char>(asleep);
     out.data.sleep.island[i] = island;
   }
-  out.data.sleep.sleeping =
-      static_cast<int>(std::count(out.data.sleep.asleep.begin(), out.data.sleep.asleep.end(), 1));
+  out.data.sleep.sleeping = static_cast<int>(std::count(out.data.sleep.asleep.begin(), out.data.sleep.asleep.end(), 1));
   for (rigid::Vec3& J : out.data.contactLoads.surfaceImpulse) ok = ok && r.get(J);
   ok = ok && r.get(out.data.contactLoads.duration);
   if (std::string why = readRestingPushes(r, out, ok); !why.empty()) return why;

@@ -20,8 +20,8 @@ int main(int argc, char** argv) {
   try {
     const rigid::Scene scene = rigid::loadSceneFile(argv[1]);
     const std::string dir = argv[2];
-    std::ofstream(dir + "/modelDescription.xml") << rigidfmu::modelDescriptionXml(
-        scene, fmi3 ? rigidfmu::FmiVersion::Fmi3 : rigidfmu::FmiVersion::Fmi2);
+    std::ofstream(dir + "/modelDescription.xml")
+        << rigidfmu::modelDescriptionXml(scene, fmi3 ? rigidfmu::FmiVersion::Fmi3 : rigidfmu::FmiVersion::Fmi2);
     std::ofstream(dir + "/model_identifier") << scene.model.name;
     std::ofstream(dir + "/modules") << rigid::modulesNeeded(scene.model);
     return 0;

@@ -46,10 +46,9 @@ struct UnitDef {
   int kg, m, s, rad;
 };
 const std::map<std::string, UnitDef> kUnits = {
-    {"1", {0, 0, 0, 0}},      {"s", {0, 0, 1, 0}},        {"m", {0, 1, 0, 0}},
-    {"kg", {1, 0, 0, 0}},     {"m/s", {0, 1, -1, 0}},     {"m/s2", {0, 1, -2, 0}},
-    {"rad/s", {0, 0, -1, 1}}, {"kg.m/s", {1, 1, -1, 0}},  {"kg.m2/s", {1, 2, -1, 0}},
-    {"N", {1, 1, -2, 0}},     {"N.m", {1, 2, -2, 0}},     {"kg/m3", {1, -3, 0, 0}},
+    {"1", {0, 0, 0, 0}},        {"s", {0, 0, 1, 0}},     {"m", {0, 1, 0, 0}},      {"kg", {1, 0, 0, 0}},
+    {"m/s", {0, 1, -1, 0}},     {"m/s2", {0, 1, -2, 0}}, {"rad/s", {0, 0, -1, 1}}, {"kg.m/s", {1, 1, -1, 0}},
+    {"kg.m2/s", {1, 2, -1, 0}}, {"N", {1, 1, -2, 0}},    {"N.m", {1, 2, -2, 0}},   {"kg/m3", {1, -3, 0, 0}},
     {"Pa.s", {1, -1, -1, 0}},
 };
 
@@ -100,8 +99,8 @@ void writeUnits(std::ostringstream& x, const std::vector<Variable>& vars) {
 
 void writeMethodItems(std::ostringstream& x, const char* indent) {
   for (const rigid::MethodInfo& m : rigid::methods())
-    x << indent << "<Item name=\"" << m.name << "\" value=\"" << static_cast<int>(m.method)
-      << "\" description=\"" << escape(m.description) << "\"/>\n";
+    x << indent << "<Item name=\"" << m.name << "\" value=\"" << static_cast<int>(m.method) << "\" description=\""
+      << escape(m.description) << "\"/>\n";
 }
 
 void writeLogCategories(std::ostringstream& x) {
@@ -127,8 +126,8 @@ std::string attributes(const Variable& v) {
 
 void writeVariable2(std::ostringstream& x, const Variable& v, double start) {
   x << "    <!-- index " << v.vr + 1 << " -->\n"
-    << "    <ScalarVariable name=\"" << escape(v.name) << "\" valueReference=\"" << v.vr << "\""
-    << attributes(v) << ">\n      ";
+    << "    <ScalarVariable name=\"" << escape(v.name) << "\" valueReference=\"" << v.vr << "\"" << attributes(v)
+    << ">\n      ";
   if (v.type == BaseType::Enumeration) {
     x << "<Enumeration declaredType=\"SolverMethod\" start=\"" << static_cast<int>(start) << "\"/>";
   } else if (v.type == BaseType::Integer) {
@@ -170,8 +169,7 @@ std::string modelDescription2(const rigid::Scene& scene) {
   x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
     << "<fmiModelDescription fmiVersion=\"2.0\" modelName=\"" << escape(model.name) << "\"\n"
     << "  guid=\"" << sceneGuid(scene) << "\"\n"
-    << "  description=\"rigid bodies of scene " << escape(model.name)
-    << " (state X, q, P, L per body)\"\n"
+    << "  description=\"rigid bodies of scene " << escape(model.name) << " (state X, q, P, L per body)\"\n"
     << "  generationTool=\"rigidfmu\" variableNamingConvention=\"structured\""
     << " numberOfEventIndicators=\"0\">\n";
   x << "  <CoSimulation modelIdentifier=\"" << escape(model.name) << "\""
@@ -200,9 +198,12 @@ std::string modelDescription2(const rigid::Scene& scene) {
 // Integer -> Int32, the method -> Enumeration (read and written with fmi3Get/SetInt64).
 
 void writeVariable3(std::ostringstream& x, const Variable& v, double start) {
-  const char* element = v.type == BaseType::Enumeration ? "Enumeration" : v.type == BaseType::Integer ? "Int32" : "Float64";
+  const char* element = v.type == BaseType::Enumeration ? "Enumeration"
+                        : v.type == BaseType::Integer   ? "Int32"
+                                                        : "Float64";
   x << "    <" << element << " name=\"" << escape(v.name) << "\" valueReference=\"" << v.vr << "\"" << attributes(v);
-  if (v.type == BaseType::Enumeration) x << " declaredType=\"SolverMethod\" start=\"" << static_cast<int>(start) << "\"";
+  if (v.type == BaseType::Enumeration)
+    x << " declaredType=\"SolverMethod\" start=\"" << static_cast<int>(start) << "\"";
   if (v.type == BaseType::Integer && hasStart(v)) x << " start=\"" << static_cast<int>(start) << "\"";
   if (v.type == BaseType::Real) {
     x << " unit=\"" << escape(v.unit) << "\"";

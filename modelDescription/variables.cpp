@@ -18,7 +18,7 @@ const char* const kQuatPart[4] = {"w", "x", "y", "z"};
 
 struct VectorQuantity {
   Quantity quantity;
-  const char* field;   // name after "<body>."
+  const char* field;  // name after "<body>."
   int size;
   Causality causality;
   Initial initial;
@@ -28,22 +28,19 @@ struct VectorQuantity {
 
 // Per-body vectors, in the order they appear in the table.
 const VectorQuantity kBodyVectors[] = {
-    {Quantity::Position, "position", 3, Causality::Output, Initial::Exact, "m",
-     "centre of mass X, world frame"},
+    {Quantity::Position, "position", 3, Causality::Output, Initial::Exact, "m", "centre of mass X, world frame"},
     {Quantity::Orientation, "orientation", 4, Causality::Output, Initial::Exact, "1",
      "orientation q, unit quaternion body to world"},
-    {Quantity::Velocity, "velocity", 3, Causality::Output, Initial::Exact, "m/s",
-     "velocity V = P/M, world frame"},
+    {Quantity::Velocity, "velocity", 3, Causality::Output, Initial::Exact, "m/s", "velocity V = P/M, world frame"},
     {Quantity::AngularVelocity, "angularVelocity", 3, Causality::Output, Initial::Exact, "rad/s",
      "angular velocity omega = I(t)^-1 L, world frame"},
-    {Quantity::LinearMomentum, "linearMomentum", 3, Causality::Output, Initial::Calculated,
-     "kg.m/s", "linear momentum P, world frame"},
-    {Quantity::AngularMomentum, "angularMomentum", 3, Causality::Output, Initial::Calculated,
-     "kg.m2/s", "angular momentum L about the centre of mass, world frame"},
+    {Quantity::LinearMomentum, "linearMomentum", 3, Causality::Output, Initial::Calculated, "kg.m/s",
+     "linear momentum P, world frame"},
+    {Quantity::AngularMomentum, "angularMomentum", 3, Causality::Output, Initial::Calculated, "kg.m2/s",
+     "angular momentum L about the centre of mass, world frame"},
     {Quantity::Force, "force", 3, Causality::Input, Initial::None, "N",
      "external force at the centre of mass, world frame"},
-    {Quantity::Torque, "torque", 3, Causality::Input, Initial::None, "N.m",
-     "external torque, world frame"},
+    {Quantity::Torque, "torque", 3, Causality::Input, Initial::None, "N.m", "external torque, world frame"},
 };
 
 std::string fmt(double v) {
@@ -91,54 +88,49 @@ std::vector<Variable> modelVariables(const Scene& scene) {
     vars.push_back(std::move(v));
   };
 
-  add({0, "time", Quantity::Time, -1, 0, Causality::Independent, Variability::Continuous,
-       Initial::None, BaseType::Real, "s", "simulation time"});
+  add({0, "time", Quantity::Time, -1, 0, Causality::Independent, Variability::Continuous, Initial::None, BaseType::Real,
+       "s", "simulation time"});
   for (int c = 0; c < 3; ++c)
-    add({0, std::string("gravity[") + std::to_string(c + 1) + "]", Quantity::Gravity, -1, c,
-         Causality::Parameter, Variability::Tunable, Initial::Exact, BaseType::Real, "m/s2",
+    add({0, std::string("gravity[") + std::to_string(c + 1) + "]", Quantity::Gravity, -1, c, Causality::Parameter,
+         Variability::Tunable, Initial::Exact, BaseType::Real, "m/s2",
          std::string("gravitational acceleration g, ") + kAxis[c] + " (world frame)"});
-  add({0, "solver.method", Quantity::SolverMethod, -1, 0, Causality::Parameter,
-       Variability::Fixed, Initial::Exact, BaseType::Enumeration, "",
-       "integration method (unit: none, an enumeration)"});
-  add({0, "solver.step", Quantity::SolverStep, -1, 0, Causality::Parameter, Variability::Fixed,
-       Initial::Exact, BaseType::Real, "s",
-       "largest internal step; a communication step is split into steps of at most this"});
-  add({0, "solver.tolerance", Quantity::SolverTolerance, -1, 0, Causality::Parameter,
-       Variability::Fixed, Initial::Exact, BaseType::Real, "1",
+  add({0, "solver.method", Quantity::SolverMethod, -1, 0, Causality::Parameter, Variability::Fixed, Initial::Exact,
+       BaseType::Enumeration, "", "integration method (unit: none, an enumeration)"});
+  add({0, "solver.step", Quantity::SolverStep, -1, 0, Causality::Parameter, Variability::Fixed, Initial::Exact,
+       BaseType::Real, "s", "largest internal step; a communication step is split into steps of at most this"});
+  add({0, "solver.tolerance", Quantity::SolverTolerance, -1, 0, Causality::Parameter, Variability::Fixed,
+       Initial::Exact, BaseType::Real, "1",
        "local error tolerance of the adaptive method dopri5 (absolute and relative); 0: fixed steps"});
-  add({0, "solver.energyGainLimit", Quantity::SolverEnergyGainLimit, -1, 0, Causality::Parameter,
-       Variability::Tunable, Initial::Exact, BaseType::Real, "1",
+  add({0, "solver.energyGainLimit", Quantity::SolverEnergyGainLimit, -1, 0, Causality::Parameter, Variability::Tunable,
+       Initial::Exact, BaseType::Real, "1",
        "largest relative gain of a torque-free body's rotational energy over the run; a step "
        "beyond it is refused (fmi2Discard); 0: unchecked"});
-  add({0, "solver.steps", Quantity::SolverSteps, -1, 0, Causality::Output, Variability::Discrete,
-       Initial::Calculated, BaseType::Integer, "",
-       "internal steps taken in the last communication step (sub-steps included)"});
-  add({0, "solver.errorEstimate", Quantity::SolverErrorEstimate, -1, 0, Causality::Output,
-       Variability::Discrete, Initial::Calculated, BaseType::Real, "1",
+  add({0, "solver.steps", Quantity::SolverSteps, -1, 0, Causality::Output, Variability::Discrete, Initial::Calculated,
+       BaseType::Integer, "", "internal steps taken in the last communication step (sub-steps included)"});
+  add({0, "solver.errorEstimate", Quantity::SolverErrorEstimate, -1, 0, Causality::Output, Variability::Discrete,
+       Initial::Calculated, BaseType::Real, "1",
        "the adaptive method's last local error estimate; 0 for fixed-step methods"});
 
   for (size_t b = 0; b < scene.model.bodies.size(); ++b) {
     const BodyConstants& body = scene.model.bodies[b];
     const int bi = static_cast<int>(b);
-    add({0, body.name + ".mass", Quantity::Mass, bi, 0, Causality::Parameter, Variability::Fixed,
-         Initial::Exact, BaseType::Real, "kg", body.name + ": mass M"});
-    add({0, body.name + ".restitution", Quantity::Restitution, bi, 0, Causality::Parameter,
-         Variability::Fixed, Initial::Exact, BaseType::Real, "1",
-         body.name + ": coefficient of restitution xi, in [0, 1]"});
+    add({0, body.name + ".mass", Quantity::Mass, bi, 0, Causality::Parameter, Variability::Fixed, Initial::Exact,
+         BaseType::Real, "kg", body.name + ": mass M"});
+    add({0, body.name + ".restitution", Quantity::Restitution, bi, 0, Causality::Parameter, Variability::Fixed,
+         Initial::Exact, BaseType::Real, "1", body.name + ": coefficient of restitution xi, in [0, 1]"});
     const rigid::BodyVariables& exposed = scene.variables[b];
     for (const VectorQuantity& q : kBodyVectors) {
       const auto& chosen = q.causality == Causality::Input ? exposed.inputs : exposed.outputs;
       if (!chosen.count(q.field)) continue;
       for (int c = 0; c < q.size; ++c) {
         const char* part = q.size == 4 ? kQuatPart[c] : kAxis[c];
-        add({0, body.name + "." + q.field + "[" + std::to_string(c + 1) + "]", q.quantity, bi, c,
-             q.causality, Variability::Continuous, q.initial, BaseType::Real, q.unit,
-             body.name + ": " + q.meaning + ", " + part});
+        add({0, body.name + "." + q.field + "[" + std::to_string(c + 1) + "]", q.quantity, bi, c, q.causality,
+             Variability::Continuous, q.initial, BaseType::Real, q.unit, body.name + ": " + q.meaning + ", " + part});
       }
     }
     if (exposed.outputs.count("contacts"))
-      add({0, body.name + ".contacts", Quantity::Contacts, bi, 0, Causality::Output,
-           Variability::Discrete, Initial::Calculated, BaseType::Integer, "",
+      add({0, body.name + ".contacts", Quantity::Contacts, bi, 0, Causality::Output, Variability::Discrete,
+           Initial::Calculated, BaseType::Integer, "",
            body.name + ": number of contact points at the end of the last step (surfaces and bodies)"});
   }
   // The scene's material and fluid constants, after every earlier variable so that
@@ -189,8 +181,9 @@ std::vector<Variable> modelVariables(const Scene& scene) {
       add({0, name + "[" + std::to_string(c + 1) + "]", q, index, c, Causality::Output, Variability::Continuous,
            Initial::Calculated, BaseType::Real, unit, meaning + ", " + kAxis[c]});
   };
-  const char* mean = "mean over the last communication step (its contact impulses, impacts included, divided by its "
-                     "length; 0 before the first)";
+  const char* mean =
+      "mean over the last communication step (its contact impulses, impacts included, divided by its "
+      "length; 0 before the first)";
   for (size_t b = 0; b < bodies.size(); ++b) {
     if (!touches(b)) continue;
     const std::set<std::string>& outputs = scene.variables[b].outputs;
@@ -213,8 +206,15 @@ std::vector<Variable> modelVariables(const Scene& scene) {
       const std::string at = "(" + fmt(load.point.x()) + ", " + fmt(load.point.y()) + ", " + fmt(load.point.z()) +
                              ") m from the centre of mass, body frame";
       for (int c = 0; c < 3; ++c) {
-        Variable v{0, bodies[b].name + "." + load.name + ".force[" + std::to_string(c + 1) + "]", Quantity::LoadForce,
-                   static_cast<int>(b), c, Causality::Input, Variability::Continuous, Initial::None, BaseType::Real,
+        Variable v{0,
+                   bodies[b].name + "." + load.name + ".force[" + std::to_string(c + 1) + "]",
+                   Quantity::LoadForce,
+                   static_cast<int>(b),
+                   c,
+                   Causality::Input,
+                   Variability::Continuous,
+                   Initial::None,
+                   BaseType::Real,
                    "N",
                    bodies[b].name + ": force at its load point " + load.name + " " + at + ", in the " +
                        (load.bodyFrame ? "body" : "world") + " frame, " + kAxis[c]};
@@ -236,8 +236,7 @@ std::vector<unsigned> initialDependencies(const std::vector<Variable>& vars, con
     if (k.body != v.body) continue;
     bool dep = false;
     if (v.quantity == Quantity::LinearMomentum)
-      dep = k.quantity == Quantity::Mass ||
-            (k.quantity == Quantity::Velocity && k.component == v.component);
+      dep = k.quantity == Quantity::Mass || (k.quantity == Quantity::Velocity && k.component == v.component);
     else if (v.quantity == Quantity::AngularMomentum)
       dep = k.quantity == Quantity::Orientation || k.quantity == Quantity::AngularVelocity ||
             (k.quantity == Quantity::Mass && model.bodies[v.body].inertiaFromShape);
@@ -268,12 +267,9 @@ double readValue(const Variable& v, const WorldModel& model, const WorldData& da
     case Quantity::SurfaceRestitution: return model.surfaces[b].restitution;
     case Quantity::MediumDensity: return model.media[b].density;
     case Quantity::MediumViscosity: return model.media[b].viscosity;
-    case Quantity::Position:
-      return setup ? model.bodies[b].start.position[c] : vectorPart(data.Y[b].X, c);
-    case Quantity::Orientation:
-      return quatPart(setup ? model.bodies[b].start.orientation : data.Y[b].q, c);
-    case Quantity::Velocity:
-      return setup ? model.bodies[b].start.velocity[c] : vectorPart(data.aux[b].V, c);
+    case Quantity::Position: return setup ? model.bodies[b].start.position[c] : vectorPart(data.Y[b].X, c);
+    case Quantity::Orientation: return quatPart(setup ? model.bodies[b].start.orientation : data.Y[b].q, c);
+    case Quantity::Velocity: return setup ? model.bodies[b].start.velocity[c] : vectorPart(data.aux[b].V, c);
     case Quantity::AngularVelocity:
       return setup ? model.bodies[b].start.angularVelocity[c] : vectorPart(data.aux[b].omega, c);
     case Quantity::LinearMomentum:
@@ -291,23 +287,19 @@ double readValue(const Variable& v, const WorldModel& model, const WorldData& da
       if (setup || !(loads.duration > 0.0)) return 0.0;
       const std::vector<rigid::Vec3>& of = v.quantity == Quantity::ContactForce    ? loads.impulse
                                            : v.quantity == Quantity::ContactTorque ? loads.angularImpulse
-                                                                                  : loads.surfaceImpulse;
+                                                                                   : loads.surfaceImpulse;
       return of[static_cast<size_t>(b)][c] / loads.duration;
     }
   }
   return 0.0;
 }
 
-std::string writeValue(const Variable& v, double value, WorldModel& model, WorldData& data,
-                       Phase phase) {
+std::string writeValue(const Variable& v, double value, WorldModel& model, WorldData& data, Phase phase) {
   if (!std::isfinite(value)) return v.name + ": must be finite, got " + fmt(value);
   const int b = v.body, c = v.component;
   switch (v.quantity) {
-    case Quantity::Time:
-      return v.name + ": the independent variable cannot be set";
-    case Quantity::Gravity:
-      model.gravity[c] = value;
-      return "";
+    case Quantity::Time: return v.name + ": the independent variable cannot be set";
+    case Quantity::Gravity: model.gravity[c] = value; return "";
     case Quantity::SolverMethod: {
       // Range and wholeness first: casting 1e10 to int would be undefined.
       const bool whole = value == std::floor(value) && std::abs(value) < 1e6;
@@ -315,8 +307,8 @@ std::string writeValue(const Variable& v, double value, WorldModel& model, World
       if (!method) {
         std::string list;
         for (const rigid::MethodInfo& m : rigid::methods())
-          list += std::string(list.empty() ? "" : ", ") + std::to_string(static_cast<int>(m.method)) +
-                  " (" + m.name + ")";
+          list +=
+              std::string(list.empty() ? "" : ", ") + std::to_string(static_cast<int>(m.method)) + " (" + m.name + ")";
         return v.name + ": must be one of " + list + ", got " + fmt(value);
       }
       model.method = *method;
@@ -335,8 +327,7 @@ std::string writeValue(const Variable& v, double value, WorldModel& model, World
       model.energyGainLimit = value;
       return "";
     case Quantity::SolverSteps:
-    case Quantity::SolverErrorEstimate:
-      return v.name + ": a calculated output; it cannot be set";
+    case Quantity::SolverErrorEstimate: return v.name + ": a calculated output; it cannot be set";
     case Quantity::Mass:
       if (!(value > 0.0)) return v.name + ": must be > 0 kg, got " + fmt(value);
       rigid::setMass(model.bodies[b], value);
@@ -375,22 +366,14 @@ std::string writeValue(const Variable& v, double value, WorldModel& model, World
       if (v.quantity == Quantity::AngularVelocity) model.bodies[b].start.angularVelocity[c] = value;
       return "";
     case Quantity::LinearMomentum:
-    case Quantity::AngularMomentum:
-      return v.name + ": a calculated output; set velocity or angularVelocity instead";
-    case Quantity::Force:
-      data.input[b].force[c] = value;
-      return "";
-    case Quantity::Torque:
-      data.input[b].torque[c] = value;
-      return "";
-    case Quantity::LoadForce:
-      data.input[b].loads[static_cast<size_t>(v.load)][c] = value;
-      return "";
+    case Quantity::AngularMomentum: return v.name + ": a calculated output; set velocity or angularVelocity instead";
+    case Quantity::Force: data.input[b].force[c] = value; return "";
+    case Quantity::Torque: data.input[b].torque[c] = value; return "";
+    case Quantity::LoadForce: data.input[b].loads[static_cast<size_t>(v.load)][c] = value; return "";
     case Quantity::Contacts:
     case Quantity::ContactForce:
     case Quantity::ContactTorque:
-    case Quantity::SurfaceForce:
-      return v.name + ": a calculated output; it cannot be set";
+    case Quantity::SurfaceForce: return v.name + ": a calculated output; it cannot be set";
   }
   return v.name + ": cannot be set";
 }

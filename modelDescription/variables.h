@@ -16,6 +16,9 @@ enum class Initial { None, Exact, Calculated };
 // FMI base type. Integer and Enumeration values travel through fmi2Get/SetInteger.
 enum class BaseType { Real, Integer, Enumeration };
 
+// A line per kind: world and solver; body, surface and medium parameters; body state;
+// inputs; contact outputs.
+// clang-format off
 enum class Quantity {
   Time, Gravity, SolverMethod, SolverStep, SolverTolerance, SolverEnergyGainLimit, SolverSteps, SolverErrorEstimate,
   Mass, Restitution, StaticFriction, KineticFriction,
@@ -24,20 +27,21 @@ enum class Quantity {
   Force, Torque, LoadForce,
   Contacts, ContactForce, ContactTorque, SurfaceForce,
 };
+// clang-format on
 
 struct Variable {
-  unsigned vr = 0;          // value reference = index in the table
-  std::string name;         // structured name, e.g. ball.position[1]
+  unsigned vr = 0;   // value reference = index in the table
+  std::string name;  // structured name, e.g. ball.position[1]
   Quantity quantity = Quantity::Time;
-  int body = -1;            // index of the body (of the surface or medium for theirs), -1 for world variables
-  int component = 0;        // 0-based: x, y, z; quaternions w, x, y, z
+  int body = -1;      // index of the body (of the surface or medium for theirs), -1 for world variables
+  int component = 0;  // 0-based: x, y, z; quaternions w, x, y, z
   Causality causality = Causality::Output;
   Variability variability = Variability::Continuous;
   Initial initial = Initial::None;
   BaseType type = BaseType::Real;
-  std::string unit;         // Real only
+  std::string unit;  // Real only
   std::string description;
-  int load = -1;            // LoadForce: which of the body's load points
+  int load = -1;  // LoadForce: which of the body's load points
 };
 
 // Every variable of the scene's FMU, in value-reference order.
@@ -52,16 +56,14 @@ std::vector<unsigned> initialDependencies(const std::vector<Variable>& vars, con
 enum class Phase { Setup, Running };
 
 // The value of a Real or Enumeration variable (time is kept by the FMU, not here).
-double readValue(const Variable& v, const rigid::WorldModel& model, const rigid::WorldData& data,
-                 Phase phase);
+double readValue(const Variable& v, const rigid::WorldModel& model, const rigid::WorldData& data, Phase phase);
 
 // Writes a value; returns "" on success or the reason it is refused, naming the
 // variable and the limit. Writes only what the variable owns; the caller decides when
 // a variable may be written at all. A friction coefficient is checked alone here
 // (finite, >= 0); that mu_k <= mu_s is checked when the pair takes effect
 // (frictionConflict), so that the two can be set in either order.
-std::string writeValue(const Variable& v, double value, rigid::WorldModel& model,
-                       rigid::WorldData& data, Phase phase);
+std::string writeValue(const Variable& v, double value, rigid::WorldModel& model, rigid::WorldData& data, Phase phase);
 
 // "" when every body's and surface's kinetic friction is at most its static friction,
 // else the first that is not, naming both variables and their values.

@@ -22,8 +22,7 @@ void setInertia(BodyConstants& body, const Mat3& Ibody) {
   // Symmetric positive definite: invert through the eigen-decomposition, which stays
   // accurate for the strongly anisotropic (needle-like) tensors that a scene may give.
   Eigen::SelfAdjointEigenSolver<Mat3> eig(Ibody);
-  body.IbodyInv = eig.eigenvectors() * eig.eigenvalues().cwiseInverse().asDiagonal() *
-                  eig.eigenvectors().transpose();
+  body.IbodyInv = eig.eigenvectors() * eig.eigenvalues().cwiseInverse().asDiagonal() * eig.eigenvectors().transpose();
   Mat3 axes = eig.eigenvectors();
   if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);  // a rotation, not a reflection
   body.principalMoments = eig.eigenvalues();

@@ -31,17 +31,17 @@ struct PointLoad {
 struct BodyConstants {
   std::string name;
   Shape shape;
-  double mass = 1.0;                  // M, kg
-  Mat3 Ibody = Mat3::Identity();      // kg m^2, about the centre of mass, body frame
-  Mat3 IbodyInv = Mat3::Identity();   // 1/(kg m^2); inverted once here, never per step
-  Vec3 principalMoments = Vec3::Ones();         // kg m^2, eigenvalues of Ibody
-  Quat principalFrame = Quat::Identity();       // principal axes -> body frame
-  bool inertiaFromShape = true;       // Ibody is the solid shape's and follows mass
-  double restitution = 0.5;           // xi, 1
-  double staticFriction = 0.6;        // mu_s, 1
-  double kineticFriction = 0.4;       // mu_k, 1
-  bool collides = true;               // takes part in body-body collision detection
-  std::vector<PointLoad> loads;       // points where input forces act
+  double mass = 1.0;                       // M, kg
+  Mat3 Ibody = Mat3::Identity();           // kg m^2, about the centre of mass, body frame
+  Mat3 IbodyInv = Mat3::Identity();        // 1/(kg m^2); inverted once here, never per step
+  Vec3 principalMoments = Vec3::Ones();    // kg m^2, eigenvalues of Ibody
+  Quat principalFrame = Quat::Identity();  // principal axes -> body frame
+  bool inertiaFromShape = true;            // Ibody is the solid shape's and follows mass
+  double restitution = 0.5;                // xi, 1
+  double staticFriction = 0.6;             // mu_s, 1
+  double kineticFriction = 0.4;            // mu_k, 1
+  bool collides = true;                    // takes part in body-body collision detection
+  std::vector<PointLoad> loads;            // points where input forces act
   BodyStart start;
 };
 
@@ -53,10 +53,10 @@ void setInertia(BodyConstants& body, const Mat3& Ibody);
 
 // The state vector Y of one body.
 struct BodyState {
-  Vec3 X = Vec3::Zero();    // m, centre of mass, world frame
+  Vec3 X = Vec3::Zero();      // m, centre of mass, world frame
   Quat q = Quat::Identity();  // orientation, body -> world, unit after every step
-  Vec3 P = Vec3::Zero();    // kg m/s, linear momentum
-  Vec3 L = Vec3::Zero();    // kg m^2/s, angular momentum about the centre of mass
+  Vec3 P = Vec3::Zero();      // kg m/s, linear momentum
+  Vec3 L = Vec3::Zero();      // kg m^2/s, angular momentum about the centre of mass
 };
 
 // dY/dt = (V, 1/2 omega q, F, T).
@@ -110,9 +110,12 @@ inline Mat3 rotationOf(const Quat& q) {
   const double xx = q.x() * xs, xy = q.x() * ys, xz = q.x() * zs;
   const double yy = q.y() * ys, yz = q.y() * zs, zz = q.z() * zs;
   Mat3 R;
+  // the matrix row by row
+  // clang-format off
   R << 1.0 - (yy + zz), xy - wz, xz + wy,
        xy + wz, 1.0 - (xx + zz), yz - wx,
        xz - wy, yz + wx, 1.0 - (xx + yy);
+  // clang-format on
   return R;
 }
 

@@ -37,9 +37,12 @@ EIGEN_STRONG_INLINE RotationPack rotationOf(const QuatPack& q) {
   const Pack wx = q.w * xs, wy = q.w * ys, wz = q.w * zs;
   const Pack xx = q.x * xs, xy = q.x * ys, xz = q.x * zs;
   const Pack yy = q.y * ys, yz = q.y * zs, zz = q.z * zs;
+  // the matrix row by row
+  // clang-format off
   return {{1.0 - (yy + zz), xy - wz, xz + wy,
            xy + wz, 1.0 - (xx + zz), yz - wx,
            xz - wy, yz + wx, 1.0 - (xx + yy)}};
+  // clang-format on
 }
 
 // M v and M^T v for a 3x3 matrix given row by row.

@@ -164,8 +164,7 @@ void SweepAndPrune::sweepRow(int begin, int end, std::vector<std::pair<int, int>
 
 // Two rows, both sorted on the sweep axis: whichever box starts first meets the other
 // row's boxes that start before it ends, so each overlapping pair is met once.
-void SweepAndPrune::sweepRows(int beginA, int endA, int beginB, int endB,
-                              std::vector<std::pair<int, int>>& out) const {
+void SweepAndPrune::sweepRows(int beginA, int endA, int beginB, int endB, std::vector<std::pair<int, int>>& out) const {
   const double* loA = sorted_[0].data();
   const double* hiA = sorted_[1].data();
   int i = beginA, j = beginB;

@@ -45,14 +45,14 @@ class SweepAndPrune {
   void testLarge(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi, std::vector<std::pair<int, int>>& out) const;
   void test(int k, int m, std::vector<std::pair<int, int>>& out) const;
 
-  int axis_ = -1;               // the sweep axis
-  double cell_ = 0.0;           // width of a cell across it
-  std::vector<int> large_;      // boxes kept out of the grid, ascending
-  std::vector<char> isLarge_;   // per box
+  int axis_ = -1;                       // the sweep axis
+  double cell_ = 0.0;                   // width of a cell across it
+  std::vector<int> large_;              // boxes kept out of the grid, ascending
+  std::vector<char> isLarge_;           // per box
   std::vector<long long> rowV_, rowU_;  // per box: its row's cell indices
-  std::vector<int> order_;      // the boxes of the grid, by row, then lower bound on the sweep axis
-  std::vector<Row> rows_;       // the rows in that order, then one past the last
-  std::vector<double> width_;   // scratch: the boxes' widest extents, for their median
+  std::vector<int> order_;              // the boxes of the grid, by row, then lower bound on the sweep axis
+  std::vector<Row> rows_;               // the rows in that order, then one past the last
+  std::vector<double> width_;           // scratch: the boxes' widest extents, for their median
   // in order_'s order: lower and upper bounds on the sweep axis, then on the other two
   std::vector<double> sorted_[6];
 };

@@ -15,10 +15,10 @@ struct CollisionCache {
   explicit CollisionCache(CollisionDetector d) : detector(std::move(d)) {}
   CollisionDetector detector;
   std::vector<Contact> contacts;
-  std::vector<double> halfThickness;    // m, per body (0 for bodies that meet nothing)
-  std::vector<double> boundingRadius;   // m, per body (0 for bodies that meet nothing)
-  std::vector<double> travel;           // m, scratch: each body's reach in a step
-  ContactScratchPtr solver;             // the contact solver's buffers
+  std::vector<double> halfThickness;   // m, per body (0 for bodies that meet nothing)
+  std::vector<double> boundingRadius;  // m, per body (0 for bodies that meet nothing)
+  std::vector<double> travel;          // m, scratch: each body's reach in a step
+  ContactScratchPtr solver;            // the contact solver's buffers
   // sleep.cpp's buffers: islands (union-find), which rest on a surface and which are
   // still long enough; the contact memory of sleeping bodies set aside during a solve
   std::vector<int> island;

@@ -15,9 +15,9 @@ namespace rigid {
 
 // One contact point between two bodies, or between a body and a surface.
 struct Contact {
-  int a = -1;        // body index (always a body)
-  int b = -1;        // other body index, or -1 when the other is a surface
-  int surface = -1;  // surface index when b == -1, else -1
+  int a = -1;                  // body index (always a body)
+  int b = -1;                  // other body index, or -1 when the other is a surface
+  int surface = -1;            // surface index when b == -1, else -1
   Vec3 point = Vec3::Zero();   // m, world frame: midway in the overlap (in the gap when depth < 0)
   Vec3 normal = Vec3::Zero();  // unit, world frame, FROM a TO b (from body a into the surface when
                                // b == -1): the direction along which b must move to separate
@@ -61,8 +61,8 @@ class CollisionDetector {
   // it, a lower bound of their distance), other pairs as with the margin.
   // `asleep` (per body, or null): pairs of two sleeping bodies and of a sleeping body
   // with a surface are skipped (sleep.h); a sleeping body's pairs with awake ones are not.
-  void detect(const std::vector<BodyState>& Y, double margin, std::vector<Contact>& out,
-              StepProfile* profile = nullptr, double speculative = 0.0, const std::vector<char>* asleep = nullptr);
+  void detect(const std::vector<BodyState>& Y, double margin, std::vector<Contact>& out, StepProfile* profile = nullptr,
+              double speculative = 0.0, const std::vector<char>* asleep = nullptr);
 
  private:
   struct Impl;

@@ -11,11 +11,11 @@
 namespace rigid {
 
 struct ContactMemory {
-  int a = -1;        // body
-  int b = -1;        // other body, or -1 with `surface` set
-  int surface = -1;  // surface index when b == -1
-  Vec3 localA = Vec3::Zero();  // m, the point in body a's frame, from its centre of mass
-  double normalImpulse = 0.0;  // N s, accumulated lambda_n >= 0 along the normal from a to b
+  int a = -1;                          // body
+  int b = -1;                          // other body, or -1 with `surface` set
+  int surface = -1;                    // surface index when b == -1
+  Vec3 localA = Vec3::Zero();          // m, the point in body a's frame, from its centre of mass
+  double normalImpulse = 0.0;          // N s, accumulated lambda_n >= 0 along the normal from a to b
   Vec3 tangentImpulse = Vec3::Zero();  // N s, accumulated friction impulse on b (world frame)
   // The point slid at the end of the last solve (its friction reached the cone's edge):
   // the next solve limits its friction by mu_k, a sticking point's by mu_s.

@@ -12,8 +12,8 @@ bool forcesHeldOverStep(const WorldModel& model, const BodyConstants& body) {
   return forcesHeldOverStep(model) && body.loads.empty();
 }
 
-void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
-                             const BodyInput& in, const BodyState& y, BodyAux& aux) {
+void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body, const BodyInput& in,
+                             const BodyState& y, BodyAux& aux) {
   aux.F = body.mass * model.gravity + in.force;
   aux.T = in.torque;
   // loads at points: the force (turned into the world frame when given in the body's)
@@ -31,9 +31,8 @@ void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
   }
 }
 
-void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body,
-                            const BodyInput& input, const BodyState& y, BodyAux& aux,
-                            BodyDerivative& dy) {
+void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body, const BodyInput& input,
+                            const BodyState& y, BodyAux& aux, BodyDerivative& dy) {
   computeVelocities(body, y, aux);
   accumulateAppliedForces(model, body, input, y, aux);
   dy.dX = aux.V;
@@ -42,11 +41,9 @@ void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body,
   dy.dL = aux.T;
 }
 
-void evaluateDerivative(const WorldModel& model, const std::vector<BodyInput>& input,
-                        const std::vector<BodyState>& Y, std::vector<BodyAux>& aux,
-                        std::vector<BodyDerivative>& dY) {
-  for (size_t i = 0; i < Y.size(); ++i)
-    evaluateBodyDerivative(model, model.bodies[i], input[i], Y[i], aux[i], dY[i]);
+void evaluateDerivative(const WorldModel& model, const std::vector<BodyInput>& input, const std::vector<BodyState>& Y,
+                        std::vector<BodyAux>& aux, std::vector<BodyDerivative>& dY) {
+  for (size_t i = 0; i < Y.size(); ++i) evaluateBodyDerivative(model, model.bodies[i], input[i], Y[i], aux[i], dY[i]);
 }
 
 }  // namespace rigid

@@ -27,18 +27,16 @@ bool forcesHeldOverStep(const WorldModel& model, const BodyConstants& body);
 
 // Every force on one body: gravity, the inputs, the media. Adds to nothing: sets
 // aux.F and aux.T. aux's V, R and omega must be those of y.
-void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
-                             const BodyInput& input, const BodyState& y, BodyAux& aux);
+void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body, const BodyInput& input,
+                             const BodyState& y, BodyAux& aux);
 
 // dY/dt of one body (bodies exert no forces on each other outside contacts).
-void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body,
-                            const BodyInput& input, const BodyState& y, BodyAux& aux,
-                            BodyDerivative& dy);
+void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body, const BodyInput& input,
+                            const BodyState& y, BodyAux& aux, BodyDerivative& dy);
 
 // For every body: auxiliaries of Y, the accumulated force and torque, and
 // dY/dt = (V, 1/2 omega q, F, T). aux is filled as a by-product.
-void evaluateDerivative(const WorldModel& model, const std::vector<BodyInput>& input,
-                        const std::vector<BodyState>& Y, std::vector<BodyAux>& aux,
-                        std::vector<BodyDerivative>& dY);
+void evaluateDerivative(const WorldModel& model, const std::vector<BodyInput>& input, const std::vector<BodyState>& Y,
+                        std::vector<BodyAux>& aux, std::vector<BodyDerivative>& dY);
 
 }  // namespace rigid

@@ -76,10 +76,13 @@ void rk4HeldForcesStep(const WorldModel& m, WorldData& d, double h, const std::v
     const QuatPack k3 = orientationRate(plus(q, 0.5 * h, k2), Lhalf, Iinv);
     const QuatPack k4 = orientationRate(plus(q, h, k3), Lend, Iinv);
     // Each k is scaled before the sum, as in rk4Step.
+    // one component a line
+    // clang-format off
     const QuatPack qNext = {q.w + (w1 * k1.w + w2 * k2.w + w2 * k3.w + w1 * k4.w),
                             q.x + (w1 * k1.x + w2 * k2.x + w2 * k3.x + w1 * k4.x),
                             q.y + (w1 * k1.y + w2 * k2.y + w2 * k3.y + w1 * k4.y),
                             q.z + (w1 * k1.z + w2 * k2.z + w2 * k3.z + w1 * k4.z)};
+    // clang-format on
     for (int lane = 0; lane < kLanes && first + lane < n; ++lane) {
       const int i = bodies[first + lane];
       const BodyState& y = d.Y[i];
@@ -213,9 +216,7 @@ void splittingStep(const WorldModel& m, WorldData& d, double h, std::vector<Body
 }
 
 // dexp^-1_u(v) on so(3), truncated after the terms a fourth-order method needs.
-Vec3 dexpInverse(const Vec3& u, const Vec3& v) {
-  return v - 0.5 * u.cross(v) + (1.0 / 12.0) * u.cross(u.cross(v));
-}
+Vec3 dexpInverse(const Vec3& u, const Vec3& v) { return v - 0.5 * u.cross(v) + (1.0 / 12.0) * u.cross(u.cross(v)); }
 
 // Runge-Kutta-Munthe-Kaas 4: the classic tableau applied to the rotation vector of
 // q = exp(Theta) q0 (world frame) and to X, P, L; q moves only by exponentials, so it
@@ -258,8 +259,9 @@ void lieRk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodySta
     out.X = y.X + (w1 * k1[i].dX + w2 * k2[i].dX + w2 * k3[i].dX + w1 * k4[i].dX);
     out.P = y.P + (w1 * k1[i].dP + w2 * k2[i].dP + w2 * k3[i].dP + w1 * k4[i].dP);
     out.L = y.L + (w1 * k1[i].dL + w2 * k2[i].dL + w2 * k3[i].dL + w1 * k4[i].dL);
-    const Vec3 Theta = (Vec3(k1[i].dq.head<3>()) + 2.0 * Vec3(k2[i].dq.head<3>()) +
-                        2.0 * Vec3(k3[i].dq.head<3>()) + Vec3(k4[i].dq.head<3>())) / 6.0;
+    const Vec3 Theta = (Vec3(k1[i].dq.head<3>()) + 2.0 * Vec3(k2[i].dq.head<3>()) + 2.0 * Vec3(k3[i].dq.head<3>()) +
+                        Vec3(k4[i].dq.head<3>())) /
+                       6.0;
     out.q = rotationQuaternion(Theta) * y.q;
   }
 }
@@ -275,8 +277,7 @@ constexpr double kA[7][6] = {
     {9017.0 / 3168, -355.0 / 33, 46732.0 / 5247, 49.0 / 176, -5103.0 / 18656},
     {35.0 / 384, 0.0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84},
 };
-constexpr double kB4[7] = {5179.0 / 57600, 0.0, 7571.0 / 16695, 393.0 / 640,
-                           -92097.0 / 339200, 187.0 / 2100, 1.0 / 40};
+constexpr double kB4[7] = {5179.0 / 57600, 0.0, 7571.0 / 16695, 393.0 / 640, -92097.0 / 339200, 187.0 / 2100, 1.0 / 40};
 
 // out = y + h sum_j a[j] k[j], j < count.
 void combine(const std::vector<BodyState>& y, double h, const double* a, int count,
@@ -312,8 +313,8 @@ void dopri5Step(const WorldModel& m, WorldData& d, const std::vector<BodyState>&
 
 // Error of a step, relative to the tolerance: max over components of
 // |y5 - y4| / (tol (1 + max(|y|, |y5|))), i.e. absolute and relative tolerance both tol.
-double scaledError(const std::vector<BodyState>& y, const std::vector<BodyState>& y5,
-                   const std::vector<BodyState>& y4, double tol) {
+double scaledError(const std::vector<BodyState>& y, const std::vector<BodyState>& y5, const std::vector<BodyState>& y4,
+                   double tol) {
   double e = 0.0;
   auto part = [&](const auto& a, const auto& b, const auto& c) {
     const auto scale = (1.0 + a.cwiseAbs().cwiseMax(b.cwiseAbs()).array()) * tol;
@@ -418,8 +419,7 @@ void rosenbrockStep(const WorldModel& m, WorldData& d, double h, std::vector<Bod
       Vec13 yp = y, ym = y;
       yp[j] += delta;
       ym[j] -= delta;
-      J.col(j) = (bodyRate(m, i, in, yp, d.aux[i]) - bodyRate(m, i, in, ym, d.aux[i])) /
-                 (2.0 * delta);
+      J.col(j) = (bodyRate(m, i, in, yp, d.aux[i]) - bodyRate(m, i, in, ym, d.aux[i])) / (2.0 * delta);
     }
     // q's rows are left out: q is turned by the free rotation below, not by the stages.
     J.middleRows<4>(3).setZero();

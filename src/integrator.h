@@ -34,7 +34,7 @@ StabilityLimits stabilityLimits(Method method);
 
 struct MethodInfo {
   Method method;
-  const char* name;         // as in scene files and the FMI enumeration
+  const char* name;  // as in scene files and the FMI enumeration
   const char* description;
 };
 const std::vector<MethodInfo>& methods();

@@ -28,8 +28,8 @@ constexpr int kCapsuleRings = 6;
 //   cylinder, capsule: a convex polyhedron of the same volume (kLatheSides around,
 //             kCapsuleRings per hemisphere) clipped exactly; error in docs/media.md.
 // Fully inside gives exactly the shape's volume at X; fully outside gives 0.
-SubmergedPart submergedPart(const Shape& shape, const Vec3& X_W, const Mat3& R_WB,
-                            const Vec3& min_W, const Vec3& max_W);
+SubmergedPart submergedPart(const Shape& shape, const Vec3& X_W, const Mat3& R_WB, const Vec3& min_W,
+                            const Vec3& max_W);
 
 // Area of the body's shadow on a plane normal to the unit direction dir_B (body frame),
 // m^2. Exact for the four shapes.

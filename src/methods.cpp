@@ -10,13 +10,14 @@ const std::vector<MethodInfo>& methods() {
       {Method::Euler, "euler", "explicit Euler, first order (the seed's Euler method)"},
       {Method::RK4, "rk4", "classic Runge-Kutta, fourth order (the seed's default)"},
       {Method::SymplecticEuler, "symplecticEuler",
-       "semi-implicit (symplectic) Euler, first order: momenta, then positions and the free rotation under the new L (as in splitting)"},
+       "semi-implicit (symplectic) Euler, first order: momenta, then positions and the free rotation under the new L "
+       "(as in splitting)"},
       {Method::Splitting, "splitting",
-       "kick-drift-kick with the Dullweber-Leimkuhler-McLachlan free-rotation splitting, second order: |L| exact, energy bounded"},
+       "kick-drift-kick with the Dullweber-Leimkuhler-McLachlan free-rotation splitting, second order: |L| exact, "
+       "energy bounded"},
       {Method::LieRK4, "lieRk4",
        "Runge-Kutta-Munthe-Kaas 4 on the rotation group, fourth order: q unit by construction"},
-      {Method::Dopri5, "dopri5",
-       "adaptive embedded Dormand-Prince 5(4) with step-size control to solver.tolerance"},
+      {Method::Dopri5, "dopri5", "adaptive embedded Dormand-Prince 5(4) with step-size control to solver.tolerance"},
       {Method::Rosenbrock, "rosenbrock",
        "linearly implicit Rosenbrock ROS2, second order, L-stable: for stiff drag and buoyancy"},
   };
@@ -69,10 +70,8 @@ const char* methodName(Method method) {
 
 double constantForceDisplacement(Method method) {
   switch (method) {
-    case Method::Euler:
-      return 0.0;
-    case Method::SymplecticEuler:
-      return 1.0;
+    case Method::Euler: return 0.0;
+    case Method::SymplecticEuler: return 1.0;
     default:  // RK4, LieRK4, Dopri5 and the splitting (kick-drift-kick) are exact; ROS2 too
       return 0.5;
   }

@@ -23,13 +23,9 @@ std::string num(double v) {
   return buf;
 }
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw SceneError(path + ": " + what);
-}
+[[noreturn]] void fail(const std::string& path, const std::string& what) { throw SceneError(path + ": " + what); }
 
-std::string join(const std::string& path, const std::string& key) {
-  return path.empty() ? key : path + "." + key;
-}
+std::string join(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
 
 bool isIdentifier(const std::string& s) {
   if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
@@ -43,8 +39,7 @@ bool isIdentifier(const std::string& s) {
 // of known keys reads an object whose keys were checked before).
 class Object {
  public:
-  Object(const json& j, std::string path, std::initializer_list<const char*> known)
-      : j_(j), path_(std::move(path)) {
+  Object(const json& j, std::string path, std::initializer_list<const char*> known) : j_(j), path_(std::move(path)) {
     if (!j.is_object()) fail(path_.empty() ? "scene" : path_, "must be a JSON object");
     if (known.size() == 0) return;  // fields already checked by another reader
     std::set<std::string> allowed(known.begin(), known.end());
@@ -125,8 +120,7 @@ double inRange(const Object& o, const char* key, double fallback, double lo, dou
 
 std::string identifier(const Object& o, const char* key, const char* fallback = nullptr) {
   const std::string s = o.string(key, fallback);
-  if (!isIdentifier(s))
-    fail(o.path(key), "must be a C identifier ([A-Za-z_][A-Za-z0-9_]*), got \"" + s + "\"");
+  if (!isIdentifier(s)) fail(o.path(key), "must be a C identifier ([A-Za-z_][A-Za-z0-9_]*), got \"" + s + "\"");
   return s;
 }
 
@@ -143,9 +137,7 @@ void friction(const Object& o, double& mus, double& muk) {
   mus = o.number("staticFriction", defaults::kStaticFriction);
   muk = o.number("kineticFriction", std::min(defaults::kKineticFriction, mus));
   if (muk < 0.0) fail(o.path("kineticFriction"), "must be >= 0, got " + num(muk));
-  if (mus < muk)
-    fail(o.path("staticFriction"),
-         "must be >= kineticFriction (" + num(muk) + "), got " + num(mus));
+  if (mus < muk) fail(o.path("staticFriction"), "must be >= kineticFriction (" + num(muk) + "), got " + num(mus));
 }
 
 Shape readShape(const json& j, const std::string& path) {
@@ -170,10 +162,8 @@ Shape readShape(const json& j, const std::string& path) {
     s.type = type == "cylinder" ? ShapeType::Cylinder : ShapeType::Capsule;
     s.radius = positive(o, "radius");
     s.length = o.number("length");
-    if (s.type == ShapeType::Cylinder && !(s.length > 0.0))
-      fail(o.path("length"), "must be > 0, got " + num(s.length));
-    if (s.type == ShapeType::Capsule && s.length < 0.0)
-      fail(o.path("length"), "must be >= 0, got " + num(s.length));
+    if (s.type == ShapeType::Cylinder && !(s.length > 0.0)) fail(o.path("length"), "must be > 0, got " + num(s.length));
+    if (s.type == ShapeType::Capsule && s.length < 0.0) fail(o.path("length"), "must be >= 0, got " + num(s.length));
   } else {
     fail(path + ".type", "must be one of sphere, box, cylinder, capsule, got \"" + type + "\"");
   }
@@ -191,11 +181,9 @@ Mat3 readInertia(const json& j, const std::string& path) {
     I.row(r) = row.transpose();
   }
   const double scale = I.cwiseAbs().maxCoeff();
-  if ((I - I.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale)
-    fail(path, "must be symmetric within 1e-9 relative");
+  if ((I - I.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale) fail(path, "must be symmetric within 1e-9 relative");
   const Vec3 m = Eigen::SelfAdjointEigenSolver<Mat3>(I).eigenvalues();  // ascending
-  if (!(m[0] > 0.0))
-    fail(path, "must be positive definite, smallest principal moment is " + num(m[0]));
+  if (!(m[0] > 0.0)) fail(path, "must be positive definite, smallest principal moment is " + num(m[0]));
   if (m[2] > (m[0] + m[1]) * (1.0 + 1e-9))
     fail(path, "principal moments must satisfy the triangle inequality: largest " + num(m[2]) +
                    " > sum of the others " + num(m[0] + m[1]));
@@ -218,7 +206,8 @@ std::vector<PointLoad> readLoads(const Object& body) {
     if (!o.has("point")) fail(o.path("point"), "is required (m, body frame, from the centre of mass)");
     load.point = o.vec3("point", Vec3::Zero());
     const std::string frame = o.string("frame", "world");
-    if (frame != "world" && frame != "body") fail(o.path("frame"), "must be \"world\" or \"body\", got \"" + frame + "\"");
+    if (frame != "world" && frame != "body")
+      fail(o.path("frame"), "must be \"world\" or \"body\", got \"" + frame + "\"");
     load.bodyFrame = frame == "body";
     loads.push_back(load);
   }
@@ -227,9 +216,8 @@ std::vector<PointLoad> readLoads(const Object& body) {
 
 BodyConstants readBody(const json& j, const std::string& path) {
   Object o(j, path,
-           {"name", "shape", "mass", "inertia", "position", "orientation", "velocity",
-            "angularVelocity", "restitution", "staticFriction", "kineticFriction", "collision",
-            "outputs", "inputs", "loads"});
+           {"name", "shape", "mass", "inertia", "position", "orientation", "velocity", "angularVelocity", "restitution",
+            "staticFriction", "kineticFriction", "collision", "outputs", "inputs", "loads"});
   BodyConstants b;
   b.name = identifier(o, "name");
   if (!o.has("shape")) fail(o.path("shape"), "is required");
@@ -278,8 +266,8 @@ std::set<std::string> nameList(const Object& o, const char* key, const std::vect
 }
 
 Surface readSurface(const json& j, const std::string& path) {
-  Object o(j, path, {"name", "min", "max", "orientation", "staticFriction", "kineticFriction",
-                     "restitution", "outputs"});
+  Object o(j, path,
+           {"name", "min", "max", "orientation", "staticFriction", "kineticFriction", "restitution", "outputs"});
   Surface s;
   s.name = identifier(o, "name");
   readBox(o, s.min, s.max);
@@ -321,7 +309,6 @@ Medium readMedium(const json& j, const std::string& path) {
   return m;
 }
 
-
 template <class T, class Read>
 std::vector<T> readList(const Object& o, const char* key, bool required, Read read) {
   std::vector<T> out;
@@ -336,8 +323,7 @@ std::vector<T> readList(const Object& o, const char* key, bool required, Read re
     const std::string path = o.path(key) + "[" + std::to_string(i) + "]";
     out.push_back(read(list[i], path));
     if (!names.insert(out.back().name).second)
-      fail(path + ".name", "must be unique in " + std::string(key) + ", \"" + out.back().name +
-                               "\" is used twice");
+      fail(path + ".name", "must be unique in " + std::string(key) + ", \"" + out.back().name + "\" is used twice");
   }
   return out;
 }
@@ -374,7 +360,8 @@ Scene parseScene(const std::string& text) {
   m.name = identifier(o, "name", "scene");
   m.gravity = o.vec3("gravity", Vec3(0.0, 0.0, -9.81));
   if (o.has("solver")) {
-    Object s(o.at("solver"), "solver", {"method", "step", "tolerance", "energyGainLimit", "contacts", "sleep", "sleepSpeed", "sleepTime"});
+    Object s(o.at("solver"), "solver",
+             {"method", "step", "tolerance", "energyGainLimit", "contacts", "sleep", "sleepSpeed", "sleepTime"});
     const std::string method = s.string("method", "rk4");
     const auto chosen = methodFromName(method);
     if (!chosen) {

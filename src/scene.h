@@ -19,9 +19,9 @@ class SceneError : public std::runtime_error {
 
 // The FMU variables a body exposes: the scene's optional body fields "outputs" and
 // "inputs", lists of the names below; by default all of them.
-inline const std::vector<std::string> kBodyOutputs = {
-    "position", "orientation", "velocity", "angularVelocity", "linearMomentum",
-    "angularMomentum", "contacts", "contactForce", "contactTorque"};
+inline const std::vector<std::string> kBodyOutputs = {"position",        "orientation",    "velocity",
+                                                      "angularVelocity", "linearMomentum", "angularMomentum",
+                                                      "contacts",        "contactForce",   "contactTorque"};
 inline const std::vector<std::string> kBodyInputs = {"force", "torque"};
 struct BodyVariables {
   std::set<std::string> outputs;
@@ -29,9 +29,9 @@ struct BodyVariables {
 };
 
 struct Scene {
-  WorldModel model;                  // name, gravity, solver, bodies, surfaces, media
+  WorldModel model;                      // name, gravity, solver, bodies, surfaces, media
   std::vector<BodyVariables> variables;  // one per body
-  std::string canonicalJson;         // the parsed file, keys sorted: identifies the scene
+  std::string canonicalJson;             // the parsed file, keys sorted: identifies the scene
 };
 
 Scene parseScene(const std::string& jsonText);
@@ -45,9 +45,9 @@ constexpr double kEnergyGainLimit = 1e-3;  // 1, the energy audit's limit (world
 constexpr double kRestitution = 0.5;
 constexpr double kStaticFriction = 0.6;
 constexpr double kKineticFriction = 0.4;
-constexpr double kAirDensity = 1.204;      // kg/m^3, 20 C, 1 atm
-constexpr double kAirViscosity = 1.813e-5; // Pa s
-constexpr double kWaterDensity = 998.2;    // kg/m^3, 20 C
+constexpr double kAirDensity = 1.204;         // kg/m^3, 20 C, 1 atm
+constexpr double kAirViscosity = 1.813e-5;    // Pa s
+constexpr double kWaterDensity = 998.2;       // kg/m^3, 20 C
 constexpr double kWaterViscosity = 1.002e-3;  // Pa s
 }  // namespace defaults
 

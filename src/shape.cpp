@@ -55,8 +55,8 @@ Vec3 solidPrincipalInertia(const Shape& s, double m) {
       const double vCap = 2.0 / 3.0 * kPi * r * r * r;
       const double mCyl = m * vCyl / (vCyl + 2.0 * vCap);
       const double mCap = m * vCap / (vCyl + 2.0 * vCap);
-      const double Ixx = mCyl * (3.0 * r * r + l * l) / 12.0 +
-                         2.0 * mCap * (0.4 * r * r + 0.25 * l * l + 0.375 * l * r);
+      const double Ixx =
+          mCyl * (3.0 * r * r + l * l) / 12.0 + 2.0 * mCap * (0.4 * r * r + 0.25 * l * l + 0.375 * l * r);
       const double Izz = 0.5 * mCyl * r * r + 2.0 * 0.4 * mCap * r * r;
       return Vec3(Ixx, Ixx, Izz);
     }

@@ -19,11 +19,10 @@ void wakeIsland(SleepState& s, int island) {
     s.stillFor[i] = 0.0;
     --s.sleeping;
   }
-  s.resting.erase(std::remove_if(s.resting.begin(), s.resting.end(),
-                                 [&](const RestingPush& p) { return !s.asleep[p.body]; }),
-                  s.resting.end());
+  s.resting.erase(
+      std::remove_if(s.resting.begin(), s.resting.end(), [&](const RestingPush& p) { return !s.asleep[p.body]; }),
+      s.resting.end());
 }
-
 
 }  // namespace
 

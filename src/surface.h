@@ -10,13 +10,13 @@ namespace rigid {
 
 struct Surface {
   std::string name;
-  Vec3 min = Vec3::Zero();   // m, corners before the turn about the centre
+  Vec3 min = Vec3::Zero();  // m, corners before the turn about the centre
   Vec3 max = Vec3::Zero();
   Quat orientation = Quat::Identity();  // turns the box about its centre
-  double staticFriction = 0.6;   // mu_s, 1
-  double kineticFriction = 0.4;  // mu_k, 1
-  double restitution = 0.5;      // xi, 1
-  bool forceOutput = true;       // the FMU reports NAME.force (the scene's "outputs")
+  double staticFriction = 0.6;          // mu_s, 1
+  double kineticFriction = 0.4;         // mu_k, 1
+  double restitution = 0.5;             // xi, 1
+  bool forceOutput = true;              // the FMU reports NAME.force (the scene's "outputs")
   // Derived by finishSurface():
   Vec3 centre = Vec3::Zero();      // m, world frame
   Mat3 R_WS = Mat3::Identity();    // surface frame -> world

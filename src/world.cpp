@@ -180,8 +180,8 @@ int advance(const WorldModel& model, WorldData& data, double tau, std::vector<Bo
 struct StepContext {
   const WorldModel& model;
   WorldData& data;
-  double h;     // s, the internal step
-  bool bouncy;  // some body of xi > 0 meets something: impacts are located
+  double h;                   // s, the internal step
+  bool bouncy;                // some body of xi > 0 meets something: impacts are located
   bool stopAtImpact = false;  // end the step at the first located impact
 };
 
@@ -196,7 +196,8 @@ void detectContacts(StepContext& s, const std::vector<BodyState>& Y, double marg
     const std::vector<char>* asleep = sleep.sleeping > 0 ? &sleep.asleep : nullptr;
     c->detector.detect(Y, margin, c->contacts, profileOf(s.data), margin, asleep);
     if (wakeTouched(c->contacts, sleep))
-      c->detector.detect(Y, margin, c->contacts, profileOf(s.data), margin, sleep.sleeping > 0 ? &sleep.asleep : nullptr);
+      c->detector.detect(Y, margin, c->contacts, profileOf(s.data), margin,
+                         sleep.sleeping > 0 ? &sleep.asleep : nullptr);
   }
 }
 
@@ -249,8 +250,8 @@ void respondToContacts(StepContext& s, std::vector<BodyState>& after) {
     c->Pbefore.resize(after.size());
     c->Lbefore.resize(after.size());
     for (size_t i = 0; i < after.size(); ++i) c->Pbefore[i] = after[i].P, c->Lbefore[i] = after[i].L;
-    const ContactSolveReport report = solveContacts(s.model, c->contacts, step, s.data.contactMemory, after,
-                                                    s.data.contacts, c->solver, c->pushes);
+    const ContactSolveReport report =
+        solveContacts(s.model, c->contacts, step, s.data.contactMemory, after, s.data.contacts, c->solver, c->pushes);
     mergeBackSleeping(s.data.contactMemory, *c);
     // the solve changed P and L by impulses only (its position correction moves X and q)
     for (size_t i = 0; i < after.size(); ++i) {
@@ -330,7 +331,6 @@ StepResult commit(const WorldModel& model, WorldData& data, std::vector<BodyStat
   }
   return {};
 }
-
 
 // Continuous collision by sub-stepping: between two detections no colliding body may
 // move (translation plus rotation of its farthest point) more than the half thickness

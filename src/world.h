@@ -23,12 +23,12 @@ struct WorldModel {
   std::string name;
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);  // m/s^2
   Method method = Method::RK4;
-  double maxStep = 1e-3;                 // s, largest internal step
-  double tolerance = 1e-6;               // 1, local error tolerance of adaptive methods (0: fixed steps)
+  double maxStep = 1e-3;    // s, largest internal step
+  double tolerance = 1e-6;  // 1, local error tolerance of adaptive methods (0: fixed steps)
   // 1, largest relative gain of a torque-free body's rotational energy over a run
   // before a step is refused (0: unchecked); explicit Euler gains ~(h |omega|)^2 a step.
   double energyGainLimit = 1e-3;
-  SleepRules sleep;                      // when islands at rest sleep (sleep.h)
+  SleepRules sleep;  // when islands at rest sleep (sleep.h)
   std::vector<BodyConstants> bodies;
   std::vector<Surface> surfaces;
   std::vector<Medium> media;
@@ -36,13 +36,13 @@ struct WorldModel {
 
 // Work buffers of the integrators, sized once so that a step allocates nothing.
 struct Scratch {
-  std::vector<BodyState> stage;   // Y + c h k, a Runge-Kutta stage
-  std::vector<BodyState> next;    // Y(t + h) before it is accepted
+  std::vector<BodyState> stage;  // Y + c h k, a Runge-Kutta stage
+  std::vector<BodyState> next;   // Y(t + h) before it is accepted
   std::vector<BodyDerivative> k[7];
-  std::vector<BodyState> y, y4;   // the adaptive method's current state and its 4th-order solution
-  std::vector<Vec3> u;            // Lie-group stages: rotation vector of each body
-  std::vector<int> held, felt;    // RK4: bodies whose forces are held over the step, and the others
-  double adaptiveStep = 0.0;      // s, the adaptive method's next trial step (0: none yet)
+  std::vector<BodyState> y, y4;  // the adaptive method's current state and its 4th-order solution
+  std::vector<Vec3> u;           // Lie-group stages: rotation vector of each body
+  std::vector<int> held, felt;   // RK4: bodies whose forces are held over the step, and the others
+  double adaptiveStep = 0.0;     // s, the adaptive method's next trial step (0: none yet)
 };
 
 // Where a step's time goes (ns, summed over steps), for the benchmarks: filled only
@@ -59,13 +59,13 @@ struct StepProfile {
 
 // Everything that changes during a run.
 struct WorldData {
-  std::vector<BodyState> Y;    // state vectors
+  std::vector<BodyState> Y;      // state vectors
   std::vector<BodyInput> input;  // external loads (FMU inputs)
   // Their rates of change over the current communication step (N/s, N m/s): the FMU's
   // input derivatives; zero unless a master sets them.
   std::vector<BodyInput> inputRate;
-  std::vector<BodyAux> aux;    // V, R and omega of Y, valid after initialise() and step()
-  std::vector<int> contacts;   // contact points of each body at the end of the last step
+  std::vector<BodyAux> aux;   // V, R and omega of Y, valid after initialise() and step()
+  std::vector<int> contacts;  // contact points of each body at the end of the last step
   // The energy audit (world.cpp), per body: twice the rotational energy of Y, that at
   // the start of the current stretch of steps free of torques and impulses, and the
   // gain factor of the earlier stretches. carried * energy / reference - 1 is the
@@ -130,6 +130,5 @@ inline constexpr const char* kEnergyGain = "rotational energy gain";
 // step ends at the first bouncing impact it locates inside it (the impulse applied),
 // and StepResult::impactAt says when (the FMI 3 FMU's early return).
 StepResult step(const WorldModel& model, WorldData& data, double h, bool stopAtImpact = false);
-
 
 }  // namespace rigid

@@ -108,6 +108,91 @@ bool materialsInRange(const rigid::WorldModel& m) {
   return true;
 }
 
+// The magic bytes, the format version, the scene's GUID and its number of bodies: a
+// state of another format or scene is refused before anything else is read.
+std::string readHeader(Reader& r, size_t size, const std::string& guid, size_t bodies, uint32_t& n) {
+  char magic[8];
+  for (char& c : magic)
+    if (!r.get(c)) return "the serialized state is too short (" + std::to_string(size) + " bytes)";
+  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) return "the bytes are not a rigidfmu state";
+  uint32_t version = 0, guidLength = 0;
+  if (!r.get(version) || version != kSnapshotVersion)
+    return "state format version " + std::to_string(version) + ", this FMU reads version " +
+           std::to_string(kSnapshotVersion);
+  if (!r.get(guidLength) || guidLength > 256) return "the serialized state is corrupt (GUID length)";
+  std::string theirs(guidLength, '\0');
+  for (char& c : theirs)
+    if (!r.get(c)) return "the serialized state is too short";
+  if (theirs != guid) return "the state is of another scene (GUID " + theirs + ", this FMU " + guid + ")";
+  if (!r.get(n) || n != bodies) return "the state holds another number of bodies";
+  return "";
+}
+
+// Values applied only once the whole state is read; the method is checked after the
+// size, so that a state of the wrong size is refused for its size.
+struct Deferred {
+  uint32_t machine = 0;
+  uint8_t terminate = 0;
+  int32_t method = 0;
+  int64_t steps = 0;
+};
+
+// The instance's times and the world's solver settings.
+bool readRunState(Reader& r, Snapshot& out, Deferred& later) {
+  return r.get(later.machine) && r.get(later.terminate) && r.get(out.startTime) && r.get(out.time) &&
+         r.get(out.lastSuccessfulTime) && r.get(out.lastStepSize) && r.get(out.model.gravity) && r.get(later.method) &&
+         r.get(out.model.maxStep) && r.get(out.model.tolerance) && r.get(out.model.energyGainLimit);
+}
+
+// The parameters and start values of bodies, surfaces and media, each within its range.
+std::string readParameters(Reader& r, Snapshot& out, bool& ok) {
+  for (rigid::BodyConstants& b : out.model.bodies) {
+    double mass = 0.0;
+    ok = ok && r.get(mass) && r.get(b.restitution) && r.get(b.staticFriction) && r.get(b.kineticFriction) &&
+         r.get(b.start.position) && r.get(b.start.orientation) && r.get(b.start.velocity) &&
+         r.get(b.start.angularVelocity);
+    if (ok && !(mass > 0.0 && std::isfinite(mass))) return "the state holds a mass that is not > 0";
+    if (ok) rigid::setMass(b, mass);  // Ibody follows, as when the parameter is set
+  }
+  for (rigid::Surface& f : out.model.surfaces)
+    ok = ok && r.get(f.staticFriction) && r.get(f.kineticFriction) && r.get(f.restitution);
+  for (rigid::Medium& m : out.model.media) ok = ok && r.get(m.density) && r.get(m.viscosity);
+  if (ok && !materialsInRange(out.model))
+    return "the state holds a friction, restitution or fluid property out of range";
+  return "";
+}
+
+// Each body's state, inputs, contact count, energy audit, sleep and contact loads; a
+// body asleep exactly when it is in an island of this scene.
+std::string readBodyStates(Reader& r, Snapshot& out, uint32_t n, bool& ok) {
+  for (uint32_t i = 0; i < n && ok; ++i) {
+    rigid::BodyState& y = out.data.Y[i];
+    int32_t contacts = 0, island = 0;
+    uint8_t asleep = 0;
+    ok = r.get(y.X) && r.get(y.q) && r.get(y.P) && r.get(y.L) && r.get(out.data.input[i].force) &&
+         r.get(out.data.input[i].torque) && r.get(out.data.inputRate[i].force) && r.get(out.data.inputRate[i].torque) &&
+         readLoads(r, out.data.input[i], out.data.inputRate[i]) && r.get(contacts) && r.get(out.data.audit.energy[i]) &&
+         r.get(out.data.audit.reference[i]) && r.get(out.data.audit.carried[i]) && r.get(asleep) &&
+         r.get(out.data.sleep.stillFor[i]) && r.get(island) && r.get(out.data.sleep.restForce[i]) &&
+         r.get(out.data.sleep.restTorque[i]) && r.get(out.data.contactLoads.impulse[i]) &&
+         r.get(out.data.contactLoads.angularImpulse[i]);
+    out.data.contacts[i] = contacts;
+    if (ok && (asleep > 1 || island < -1 || island >= static_cast<int32_t>(n) || (asleep == 1) != (island >= 0)))
+      return "the serialized state is corrupt (sleep of body " + std::to_string(i) + ")";
+    out.data.sleep.asleep[i] = static_cast<char>(asleep);
+    out.data.sleep.island[i] = island;
+  }
+  out.data.sleep.sleeping = static_cast<int>(std::count(out.data.sleep.asleep.begin(), out.data.sleep.asleep.end(), 1));
+  return "";
+}
+
+// The surfaces' contact impulses of the last communication step, and its length.
+bool readSurfaceLoads(Reader& r, Snapshot& out) {
+  for (rigid::Vec3& J : out.data.contactLoads.surfaceImpulse)
+    if (!r.get(J)) return false;
+  return r.get(out.data.contactLoads.duration);
+}
+
 }  // namespace
 
 std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
@@ -164,71 +249,26 @@ std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
 std::string deserialize(const char* bytes, size_t size, const std::string& guid, Snapshot& s) {
   if (!bytes) return "the serialized state is NULL";
   Reader r(bytes, size);
-  char magic[8];
-  for (char& c : magic)
-    if (!r.get(c)) return "the serialized state is too short (" + std::to_string(size) + " bytes)";
-  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) return "the bytes are not a rigidfmu state";
-  uint32_t version = 0, guidLength = 0, n = 0, machine = 0;
-  if (!r.get(version) || version != kSnapshotVersion)
-    return "state format version " + std::to_string(version) + ", this FMU reads version " +
-           std::to_string(kSnapshotVersion);
-  if (!r.get(guidLength) || guidLength > 256) return "the serialized state is corrupt (GUID length)";
-  std::string theirs(guidLength, '\0');
-  for (char& c : theirs)
-    if (!r.get(c)) return "the serialized state is too short";
-  if (theirs != guid) return "the state is of another scene (GUID " + theirs + ", this FMU " + guid + ")";
-  if (!r.get(n) || n != s.model.bodies.size()) return "the state holds another number of bodies";
-  uint8_t terminate = 0;
-  int32_t method = 0;
+  uint32_t n = 0;
+  if (std::string why = readHeader(r, size, guid, s.model.bodies.size(), n); !why.empty()) return why;
+  // read into a copy: `s` changes only when the whole state is accepted
   Snapshot out = s;
-  bool ok = r.get(machine) && r.get(terminate) && r.get(out.startTime) && r.get(out.time) &&
-            r.get(out.lastSuccessfulTime) && r.get(out.lastStepSize) && r.get(out.model.gravity) && r.get(method) &&
-            r.get(out.model.maxStep) && r.get(out.model.tolerance) && r.get(out.model.energyGainLimit);
-  for (rigid::BodyConstants& b : out.model.bodies) {
-    double mass = 0.0;
-    ok = ok && r.get(mass) && r.get(b.restitution) && r.get(b.staticFriction) && r.get(b.kineticFriction) &&
-         r.get(b.start.position) && r.get(b.start.orientation) && r.get(b.start.velocity) &&
-         r.get(b.start.angularVelocity);
-    if (ok && !(mass > 0.0 && std::isfinite(mass))) return "the state holds a mass that is not > 0";
-    if (ok) rigid::setMass(b, mass);  // Ibody follows, as when the parameter is set
-  }
-  for (rigid::Surface& f : out.model.surfaces)
-    ok = ok && r.get(f.staticFriction) && r.get(f.kineticFriction) && r.get(f.restitution);
-  for (rigid::Medium& m : out.model.media) ok = ok && r.get(m.density) && r.get(m.viscosity);
-  if (ok && !materialsInRange(out.model))
-    return "the state holds a friction, restitution or fluid property out of range";
-  for (uint32_t i = 0; i < n && ok; ++i) {
-    rigid::BodyState& y = out.data.Y[i];
-    int32_t contacts = 0, island = 0;
-    uint8_t asleep = 0;
-    ok = r.get(y.X) && r.get(y.q) && r.get(y.P) && r.get(y.L) && r.get(out.data.input[i].force) &&
-         r.get(out.data.input[i].torque) && r.get(out.data.inputRate[i].force) && r.get(out.data.inputRate[i].torque) &&
-         readLoads(r, out.data.input[i], out.data.inputRate[i]) && r.get(contacts) && r.get(out.data.audit.energy[i]) &&
-         r.get(out.data.audit.reference[i]) && r.get(out.data.audit.carried[i]) && r.get(asleep) &&
-         r.get(out.data.sleep.stillFor[i]) && r.get(island) && r.get(out.data.sleep.restForce[i]) &&
-         r.get(out.data.sleep.restTorque[i]) && r.get(out.data.contactLoads.impulse[i]) &&
-         r.get(out.data.contactLoads.angularImpulse[i]);
-    out.data.contacts[i] = contacts;
-    if (ok && (asleep > 1 || island < -1 || island >= static_cast<int32_t>(n) || (asleep == 1) != (island >= 0)))
-      return "the serialized state is corrupt (sleep of body " + std::to_string(i) + ")";
-    out.data.sleep.asleep[i] = static_cast<char>(asleep);
-    out.data.sleep.island[i] = island;
-  }
-  out.data.sleep.sleeping = static_cast<int>(std::count(out.data.sleep.asleep.begin(), out.data.sleep.asleep.end(), 1));
-  for (rigid::Vec3& J : out.data.contactLoads.surfaceImpulse) ok = ok && r.get(J);
-  ok = ok && r.get(out.data.contactLoads.duration);
+  Deferred later;
+  bool ok = readRunState(r, out, later);
+  if (std::string why = readParameters(r, out, ok); !why.empty()) return why;
+  if (std::string why = readBodyStates(r, out, n, ok); !why.empty()) return why;
+  ok = ok && readSurfaceLoads(r, out);
   if (std::string why = readRestingPushes(r, out, ok); !why.empty()) return why;
-  int64_t steps = 0;
-  ok = ok && r.get(steps) && r.get(out.data.errorEstimate) && r.get(out.data.scratch.adaptiveStep);
+  ok = ok && r.get(later.steps) && r.get(out.data.errorEstimate) && r.get(out.data.scratch.adaptiveStep);
   if (std::string why = readContactMemory(r, out, ok); !why.empty()) return why;
   if (!ok || !r.done())
     return "the serialized state has " + std::to_string(size) + " bytes, not the size of a state of this scene";
-  const auto m = rigid::methodFromValue(method);
-  if (!m) return "the state holds an unknown solver.method " + std::to_string(method);
+  const auto m = rigid::methodFromValue(later.method);
+  if (!m) return "the state holds an unknown solver.method " + std::to_string(later.method);
   out.model.method = *m;
-  out.data.steps = steps;
-  out.machineState = machine;
-  out.wantsToTerminate = terminate != 0;
+  out.data.steps = later.steps;
+  out.machineState = later.machine;
+  out.wantsToTerminate = later.terminate != 0;
   rigid::refreshAuxiliaries(out.model, out.data);
   s = std::move(out);
   return "";

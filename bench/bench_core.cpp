@@ -36,9 +36,7 @@ namespace {
 
 std::string scenesDir;
 
-rigid::Scene load(const std::string& file) {
-  return rigid::loadSceneFile(scenesDir + "/" + file);
-}
+rigid::Scene load(const std::string& file) { return rigid::loadSceneFile(scenesDir + "/" + file); }
 
 void freeBodies(benchmark::State& state, rigid::Method method, int n) {
   rigid::Scene scene = load("free_" + std::to_string(n) + ".json");
@@ -75,8 +73,8 @@ double deepestPenetration(const rigid::Scene& scene, const rigid::WorldData& dat
 // which for convex polyhedra is the smallest overlap of their projections over the
 // separating-axis candidates (3 + 3 face normals, 9 edge crossings). This is the
 // benchmark's own measure, written apart from the detector's.
-double boxPenetration(const rigid::Vec3& halfA, const rigid::Mat3& Ra, const rigid::Vec3& pa,
-                      const rigid::Vec3& halfB, const rigid::Mat3& Rb, const rigid::Vec3& pb) {
+double boxPenetration(const rigid::Vec3& halfA, const rigid::Mat3& Ra, const rigid::Vec3& pa, const rigid::Vec3& halfB,
+                      const rigid::Mat3& Rb, const rigid::Vec3& pb) {
   const rigid::Vec3 d = pb - pa;
   double depth = std::numeric_limits<double>::infinity();
   auto consider = [&](const rigid::Vec3& axis) {
@@ -98,16 +96,16 @@ double boxPenetration(const rigid::Vec3& halfA, const rigid::Mat3& Ra, const rig
 // top face. MuJoCo's -contact.dist is of its state too. (A contact point's depth from
 // one box's face can exceed the pair's penetration when the two are tilted: it is not
 // how far they overlap.)
-double deepestOverlapOfState(const rigid::Scene& scene, const rigid::WorldData& data,
-                             rigid::CollisionDetector& probe, std::vector<rigid::Contact>& contacts) {
+double deepestOverlapOfState(const rigid::Scene& scene, const rigid::WorldData& data, rigid::CollisionDetector& probe,
+                             std::vector<rigid::Contact>& contacts) {
   probe.detect(data.Y, 0.0, contacts);
   double deepest = 0.0;
   for (const rigid::Contact& c : contacts) {
     if (c.b < 0 || c.depth <= 0.0) continue;
     const rigid::BodyConstants& a = scene.model.bodies[c.a];
     const rigid::BodyConstants& b = scene.model.bodies[c.b];
-    deepest = std::max(deepest, boxPenetration(0.5 * a.shape.size, data.aux[c.a].R, data.Y[c.a].X,
-                                               0.5 * b.shape.size, data.aux[c.b].R, data.Y[c.b].X));
+    deepest = std::max(deepest, boxPenetration(0.5 * a.shape.size, data.aux[c.a].R, data.Y[c.a].X, 0.5 * b.shape.size,
+                                               data.aux[c.b].R, data.Y[c.b].X));
   }
   for (size_t i = 0; i < data.Y.size(); ++i) {
     const rigid::Vec3 half = 0.5 * scene.model.bodies[i].shape.size;
@@ -279,15 +277,16 @@ void pileManifold(benchmark::State& state, const std::string& file, bool sleep) 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (argc < 2) {
-    std::fprintf(stderr, "usage: rigid-bench-core SCENES_DIR [benchmark flags]\n"
-                         "  (scenes: .venv/bin/python scripts/bench_scenes.py SCENES_DIR)\n");
+    std::fprintf(stderr,
+                 "usage: rigid-bench-core SCENES_DIR [benchmark flags]\n"
+                 "  (scenes: .venv/bin/python scripts/bench_scenes.py SCENES_DIR)\n");
     return 2;
   }
   scenesDir = argv[1];
   for (const rigid::MethodInfo& m : rigid::methods())
     for (int n : {1, 10, 100, 1000, 10000})
-      benchmark::RegisterBenchmark(("BM_Free/" + std::string(m.name) + "/" + std::to_string(n)).c_str(),
-                                   freeBodies, m.method, n);
+      benchmark::RegisterBenchmark(("BM_Free/" + std::string(m.name) + "/" + std::to_string(n)).c_str(), freeBodies,
+                                   m.method, n);
   for (int n : {10, 100, 1000})
     benchmark::RegisterBenchmark(("BM_Pile/" + std::to_string(n)).c_str(), pile, n)
         ->Unit(benchmark::kMillisecond)

@@ -26,10 +26,10 @@ constexpr int kMaxImpactPasses = 500;
 // surface: no inverse mass, no inverse inertia, never moves.
 struct SolverBody {
   double invMass = 0.0;
-  Mat3 Iinv = Mat3::Zero();                  // 1/(kg m^2), world frame, at the end-of-step pose
-  Vec3 v = Vec3::Zero(), w = Vec3::Zero();   // velocity and angular velocity
-  Vec3 vp = Vec3::Zero(), wp = Vec3::Zero(); // pseudo-velocities of the position correction
-  Vec3 v0 = Vec3::Zero(), w0 = Vec3::Zero(); // velocities before the impacts and the solve's impulses
+  Mat3 Iinv = Mat3::Zero();                   // 1/(kg m^2), world frame, at the end-of-step pose
+  Vec3 v = Vec3::Zero(), w = Vec3::Zero();    // velocity and angular velocity
+  Vec3 vp = Vec3::Zero(), wp = Vec3::Zero();  // pseudo-velocities of the position correction
+  Vec3 v0 = Vec3::Zero(), w0 = Vec3::Zero();  // velocities before the impacts and the solve's impulses
   unsigned version = 0;  // counts the impulses that changed its velocities by more than kNegligible
 };
 
@@ -59,12 +59,12 @@ struct Row {
   double depth = 0.0;
   double target = 0.0;  // m/s, the normal velocity the solve aims at (< 0: a gap may close)
   double lambdaN = 0.0, lambdaT1 = 0.0, lambdaT2 = 0.0, lambdaP = 0.0;
-  double pushOut = 0.0;  // m/s, the position correction's target normal pseudo-velocity
+  double pushOut = 0.0;                 // m/s, the position correction's target normal pseudo-velocity
   unsigned versionA = 0, versionB = 0;  // the bodies' versions when the row was found settled
   bool settled = false;
-  bool held = false;     // solveBlock: its friction is not an unknown of the block
-  bool sliding = false;  // friction limited by mu_k (else mu_s), for the whole solve
-  bool remembered = false;  // matched to a point of last step
+  bool held = false;           // solveBlock: its friction is not an unknown of the block
+  bool sliding = false;        // friction limited by mu_k (else mu_s), for the whole solve
+  bool remembered = false;     // matched to a point of last step
   Vec3 localA = Vec3::Zero();  // m, the point in body a's frame (matches last step's points)
   const Contact* contact = nullptr;
 };
@@ -77,19 +77,19 @@ struct ContactScratch {
   std::vector<SolverBody> bodies;  // one per body, then the static slot
   std::vector<char> involved;      // bodies that some row touches
   std::vector<Row> rows;
-  std::vector<Row> impacts;        // answerImpacts' merged pairs
-  std::vector<size_t> deep;        // rows overlapping by more than the slop
-  std::vector<double> moveScale;   // limitMoves: each body's share of the solve's move
-  std::vector<char> used;          // warmStart: memory points already matched
-  std::vector<int> island;         // findBlockIslands: each body's island (union-find)
-  std::vector<size_t> islandRows;  // findBlockIslands: rows grouped by island
+  std::vector<Row> impacts;                       // answerImpacts' merged pairs
+  std::vector<size_t> deep;                       // rows overlapping by more than the slop
+  std::vector<double> moveScale;                  // limitMoves: each body's share of the solve's move
+  std::vector<char> used;                         // warmStart: memory points already matched
+  std::vector<int> island;                        // findBlockIslands: each body's island (union-find)
+  std::vector<size_t> islandRows;                 // findBlockIslands: rows grouped by island
   std::vector<std::pair<size_t, size_t>> blocks;  // findBlockIslands: islands for solveBlock
-  std::vector<size_t> block;       // solveBlockIslands: one island's rows
-  std::vector<size_t> active;      // solveBlock: the rows whose impulses are solved
-  std::vector<std::pair<size_t, int>> unknowns;  // solveBlock: (row, axis) of each unknown
-  Eigen::MatrixXd K, regular;      // solveBlock: its matrix, and that matrix made regular
-  Eigen::VectorXd residual, delta; // solveBlock: velocity errors, impulse changes
-  Eigen::LDLT<Eigen::MatrixXd> factors;  // solveBlock: of `regular`
+  std::vector<size_t> block;                      // solveBlockIslands: one island's rows
+  std::vector<size_t> active;                     // solveBlock: the rows whose impulses are solved
+  std::vector<std::pair<size_t, int>> unknowns;   // solveBlock: (row, axis) of each unknown
+  Eigen::MatrixXd K, regular;                     // solveBlock: its matrix, and that matrix made regular
+  Eigen::VectorXd residual, delta;                // solveBlock: velocity errors, impulse changes
+  Eigen::LDLT<Eigen::MatrixXd> factors;           // solveBlock: of `regular`
   int staticSlot() const { return static_cast<int>(bodies.size()) - 1; }
 };
 
@@ -290,7 +290,6 @@ int answerImpacts(Solver& s, const ContactStep& step, std::vector<BodyState>& Y,
 
 // ---- warm start ------------------------------------------------------------------
 
-
 // The velocities that the impacts and the solve's impulses start from (correctPositions
 // moves each body by what they change, within limitMoves).
 void markVelocities(Solver& s) {
@@ -478,13 +477,14 @@ bool projectFriction(Solver& s, const std::vector<size_t>& rows, std::vector<Bod
 
 // The impulses of `rows` solved together, exactly: lambda_n >= 0 with v_n = target
 // wherever lambda_n > 0, and the slip stopped at every sticking point whose friction
-// stays inside its disc. An active set: rows that would pull are dropped, points whose friction would leave the disc are
-// projected onto it and held there, and the rest is solved again. Sliding points keep
-// their kinetic friction as the passes made it; speculative points are left to the
-// passes (their targets, gap / h, need not agree with a touching point's 0 on the same
-// pair, and the least-squares answer to that would be huge). A face's four points are
-// redundant (one normal and one twist too many), so the matrix is made regular by 1e-9
-// of its diagonal: near the least-norm impulses, the load shared evenly.
+// stays inside its disc. An active set: rows that would pull are dropped, points whose
+// friction would leave the disc are projected onto it and held there, and the rest is
+// solved again. Sliding points keep their kinetic friction as the passes made it;
+// speculative points are left to the passes (their targets, gap / h, need not agree
+// with a touching point's 0 on the same pair, and the least-squares answer to that
+// would be huge). A face's four points are redundant (one normal and one twist too
+// many), so the matrix is made regular by 1e-9 of its diagonal: near the least-norm
+// impulses, the load shared evenly.
 void solveBlock(Solver& s, const std::vector<size_t>& rows, std::vector<BodyState>& Y) {
   std::vector<size_t>& active = s.active;
   active.clear();
@@ -583,9 +583,9 @@ void solveBlockIslands(Solver& s, std::vector<BodyState>& Y) {
   const std::vector<size_t>& order = s.islandRows;
   std::vector<size_t>& rows = s.block;
   for (const auto& [begin, end] : s.blocks) {
-    const bool unsettled = std::any_of(order.begin() + static_cast<std::ptrdiff_t>(begin),
-                                       order.begin() + static_cast<std::ptrdiff_t>(end),
-                                       [&](size_t i) { return !s.rows[i].settled; });
+    const bool unsettled =
+        std::any_of(order.begin() + static_cast<std::ptrdiff_t>(begin),
+                    order.begin() + static_cast<std::ptrdiff_t>(end), [&](size_t i) { return !s.rows[i].settled; });
     if (!unsettled) continue;
     rows.assign(order.begin() + static_cast<std::ptrdiff_t>(begin), order.begin() + static_cast<std::ptrdiff_t>(end));
     solveBlock(s, rows, Y);
@@ -778,10 +778,9 @@ void countTouching(const std::vector<Contact>& contacts, std::vector<int>& count
 
 }  // namespace
 
-ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Contact>& contacts,
-                                 const ContactStep& step, std::vector<ContactMemory>& memory,
-                                 std::vector<BodyState>& Y, std::vector<int>& count, ContactScratchPtr& scratch,
-                                 std::vector<SurfacePush>& pushes) {
+ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Contact>& contacts, const ContactStep& step,
+                                 std::vector<ContactMemory>& memory, std::vector<BodyState>& Y, std::vector<int>& count,
+                                 ContactScratchPtr& scratch, std::vector<SurfacePush>& pushes) {
   ContactSolveReport report;
   pushes.clear();
   countTouching(contacts, count);
@@ -802,8 +801,8 @@ ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Cont
   return report;
 }
 
-bool anyBouncingImpact(const WorldModel& model, const std::vector<Contact>& contacts,
-                       const std::vector<BodyState>& Y, double restingSpeed) {
+bool anyBouncingImpact(const WorldModel& model, const std::vector<Contact>& contacts, const std::vector<BodyState>& Y,
+                       double restingSpeed) {
   for (const Contact& c : contacts) {
     if (c.depth <= 0.0 || coefficientsOf(model, c).xi <= 0.0) continue;
     auto pointVelocity = [&](int i) -> Vec3 {

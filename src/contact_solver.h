@@ -41,10 +41,10 @@ struct SurfacePush {
 };
 
 struct ContactSolveReport {
-  int points = 0;             // contact points answered
-  int iterations = 0;         // velocity iterations taken
-  double residual = 0.0;      // m/s, largest velocity change of the last iteration
-  int impactPasses = 0;       // passes of the impact stage (0: no impact)
+  int points = 0;         // contact points answered
+  int iterations = 0;     // velocity iterations taken
+  double residual = 0.0;  // m/s, largest velocity change of the last iteration
+  int impactPasses = 0;   // passes of the impact stage (0: no impact)
 };
 
 // The solver's constants, stated once (README, "Contacts").
@@ -62,11 +62,11 @@ constexpr double kVelocityTolerance = 1e-5;  // m/s: stop when no impulse change
 constexpr int kBlockAfter = 8;
 constexpr int kMaxBlockRows = 32;
 constexpr double kBlockMassRatio = 100.0;
-constexpr int kPositionIterations = 8;       // split-impulse passes
-constexpr double kSlop = 1e-4;               // m, overlap left alone (a resting body's seat)
-constexpr double kBaumgarte = 0.2;           // share of the overlap beyond the slop removed per step
-constexpr double kMaxPushOut = 1.0;          // m/s, cap of the position correction's speed
-constexpr double kMatchDistance = 0.01;      // m: a point within this of last step's (body a's frame) is the same
+constexpr int kPositionIterations = 8;   // split-impulse passes
+constexpr double kSlop = 1e-4;           // m, overlap left alone (a resting body's seat)
+constexpr double kBaumgarte = 0.2;       // share of the overlap beyond the slop removed per step
+constexpr double kMaxPushOut = 1.0;      // m/s, cap of the position correction's speed
+constexpr double kMatchDistance = 0.01;  // m: a point within this of last step's (body a's frame) is the same
 }  // namespace contact_solver
 
 // The solver's work buffers (contact_solver.cpp), kept from one solve to the next.
@@ -82,14 +82,13 @@ using ContactScratchPtr = std::unique_ptr<ContactScratch, ContactScratchDeleter>
 // on entry and this step's on return. Adds each body's touching points to count.
 // `scratch` holds no state between solves, only buffers (made on first use). `pushes`
 // is replaced by the impulses the bodies gave the surfaces, per body and surface.
-ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Contact>& contacts,
-                                 const ContactStep& step, std::vector<ContactMemory>& memory,
-                                 std::vector<BodyState>& Y, std::vector<int>& count, ContactScratchPtr& scratch,
-                                 std::vector<SurfacePush>& pushes);
+ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Contact>& contacts, const ContactStep& step,
+                                 std::vector<ContactMemory>& memory, std::vector<BodyState>& Y, std::vector<int>& count,
+                                 ContactScratchPtr& scratch, std::vector<SurfacePush>& pushes);
 
 // Whether some contact of Y is a bouncing impact: overlapping, xi > 0, approaching
 // faster than restingSpeed (m/s). The step then locates the instant of impact.
-bool anyBouncingImpact(const WorldModel& model, const std::vector<Contact>& contacts,
-                       const std::vector<BodyState>& Y, double restingSpeed);
+bool anyBouncingImpact(const WorldModel& model, const std::vector<Contact>& contacts, const std::vector<BodyState>& Y,
+                       double restingSpeed);
 
 }  // namespace rigid

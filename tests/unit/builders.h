@@ -74,9 +74,8 @@ inline BodyConstants asymmetricBody(const Vec3& principal, double mass) {
 // (not through Eigen's conversion, which the code under test uses).
 inline Mat3 rotationOf(double w, double x, double y, double z) {
   Mat3 R;
-  R << 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y),
-       2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
-       2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y);
+  R << 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y), 2 * (x * y + w * z), 1 - 2 * (x * x + z * z),
+      2 * (y * z - w * x), 2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y);
   return R;
 }
 

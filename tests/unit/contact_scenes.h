@@ -27,12 +27,12 @@ constexpr double kG = 9.81;
 inline double radians(double degrees) { return degrees * kPi / 180.0; }
 
 inline json floorSurface(double mus = 0.6, double muk = 0.6, double xi = 0.0) {
-  return {{"name", "floor"}, {"min", {-20, -20, -1}}, {"max", {20, 20, 0}},
+  return {{"name", "floor"},       {"min", {-20, -20, -1}},  {"max", {20, 20, 0}},
           {"staticFriction", mus}, {"kineticFriction", muk}, {"restitution", xi}};
 }
 
 inline json box(const std::string& name, const Vec3& size, const Vec3& position, const Quat& q = Quat::Identity(),
-         double xi = 0.0, double mus = 0.6, double muk = 0.6) {
+                double xi = 0.0, double mus = 0.6, double muk = 0.6) {
   return {{"name", name},
           {"shape", {{"type", "box"}, {"size", {size.x(), size.y(), size.z()}}}},
           {"mass", 1.0},

@@ -31,9 +31,7 @@ TEST(Body, AuxiliariesFromState) {
   const double m = 2.5;
   rigid::setMass(b, m);
   Mat3 Ibody;
-  Ibody << 0.9, 0.12, -0.05,
-           0.12, 0.7, 0.08,
-          -0.05, 0.08, 0.5;
+  Ibody << 0.9, 0.12, -0.05, 0.12, 0.7, 0.08, -0.05, 0.08, 0.5;
   rigid::setInertia(b, Ibody);
   b.start.orientation = unitQuat(0.8, 0.2, -0.5, 0.3);
   b.start.velocity = Vec3(0.4, -1.2, 3.0);

@@ -7,8 +7,8 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <tuple>
 #include <random>
+#include <tuple>
 #include <utility>
 #include <vector>
 

@@ -166,7 +166,7 @@ TEST(CollisionDetection, SphereOnARamp) {
   const Quat turn = about(Vec3(0.3, 1.0, 0.0), kPi / 6.0);  // a 30 deg ramp, turned about its centre
   m.surfaces = {surface(Vec3(-2, -1, -0.5), Vec3(2, 1, 0), turn)};
   const Mat3 R = turn.toRotationMatrix();
-  const Vec3 nOut = R.col(2);                                     // the top face's outward normal
+  const Vec3 nOut = R.col(2);                                         // the top face's outward normal
   const Vec3 onFace = Vec3(0, 0, -0.25) + R * Vec3(0.7, -0.2, 0.25);  // a point of the top face
   const double d = 0.003;
   const std::vector<Contact> out = detect(m, {pose(onFace + nOut * (0.1 - d))});
@@ -367,8 +367,7 @@ TEST(CollisionDetection, BodyThatDoesNotCollideGivesNothing) {
   rigid::WorldModel m;
   m.bodies = {sphere(0.3), sphere(0.3), box(Vec3(0.2, 0.2, 0.2))};
   m.surfaces = {floorSurface()};
-  const std::vector<rigid::BodyState> Y = {pose(Vec3(0, 0, 0.25)), pose(Vec3(0.5, 0, 0.25)),
-                                           pose(Vec3(2, 0, 0.09))};
+  const std::vector<rigid::BodyState> Y = {pose(Vec3(0, 0, 0.25)), pose(Vec3(0.5, 0, 0.25)), pose(Vec3(2, 0, 0.09))};
   ASSERT_EQ(detect(m, Y).size(), 3u + 4u);  // sphere-sphere, two spheres on the floor, the box
   const std::vector<Contact> out = detect(m, Y, 0.0, {true, false, true});
   ASSERT_EQ(out.size(), 1u + 4u);

@@ -11,7 +11,9 @@ namespace {
 
 using namespace test_scenes;
 
-Vec3 meanForce(const Sim& sim, int body) { return sim.data.contactLoads.impulse[body] / sim.data.contactLoads.duration; }
+Vec3 meanForce(const Sim& sim, int body) {
+  return sim.data.contactLoads.impulse[body] / sim.data.contactLoads.duration;
+}
 Vec3 meanTorque(const Sim& sim, int body) {
   return sim.data.contactLoads.angularImpulse[body] / sim.data.contactLoads.duration;
 }

@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -105,8 +105,7 @@ OneSolve solveOnce(const TwoBodies& t, double restingSpeed) {
   o.Y = t.Y;
   rigid::ContactScratchPtr scratch;
   std::vector<rigid::SurfacePush> pushes;
-  o.report =
-      rigid::solveContacts(t.model, {t.contact}, {1e-3, restingSpeed}, o.memory, o.Y, o.count, scratch, pushes);
+  o.report = rigid::solveContacts(t.model, {t.contact}, {1e-3, restingSpeed}, o.memory, o.Y, o.count, scratch, pushes);
   return o;
 }
 
@@ -192,8 +191,8 @@ TEST(ContactSolver, TallBoxPushedAboveTheTippingThresholdFallsOnItsSide) {
 // each bear m g / 4 at a / sqrt(2) from the axis, so static friction holds up to
 // mu_s m g a / sqrt(2) and the cube turns above it.
 double yawAfterTorque(double torque) {
-  Sim sim(sceneOf({box("cube", Vec3::Ones(), Vec3(0, 0, 0.5), Quat::Identity(), 0.0, 0.6, 0.4)},
-                  {floorSurface(0.6, 0.4)}));
+  Sim sim(
+      sceneOf({box("cube", Vec3::Ones(), Vec3(0, 0, 0.5), Quat::Identity(), 0.0, 0.6, 0.4)}, {floorSurface(0.6, 0.4)}));
   sim.run(0.2);  // seated
   const Vec3 x0 = sim.R(0).col(0);
   sim.data.input[0].torque = Vec3(0, 0, torque);
@@ -242,8 +241,12 @@ struct RampRun {
 
 RampRun cubeDownRamp(double theta, double T, const char* method = "rk4") {
   const Quat turn(Eigen::AngleAxisd(theta, Vec3::UnitY()));
-  json ramp = {{"name", "ramp"}, {"min", {-5, -1, -0.5}}, {"max", {5, 1, 0.5}}, {"staticFriction", 0.5},
-               {"kineticFriction", 0.3}, {"restitution", 0.0},
+  json ramp = {{"name", "ramp"},
+               {"min", {-5, -1, -0.5}},
+               {"max", {5, 1, 0.5}},
+               {"staticFriction", 0.5},
+               {"kineticFriction", 0.3},
+               {"restitution", 0.0},
                {"orientation", {turn.w(), turn.x(), turn.y(), turn.z()}}};
   const Vec3 normal = turn * Vec3::UnitZ(), down = turn * Vec3::UnitX();
   const Vec3 start = (0.5 + 0.1) * normal;
@@ -265,7 +268,8 @@ TEST(ContactSolver, StaticFrictionHoldsABoxOnARampJustBelowItsLimit) {
 }
 
 TEST(ContactSolver, ABoxJustAboveTheLimitSlidesWithKineticFriction) {
-  for (const auto& [theta, tolerance] : {std::pair<double, double>{radians(30.0), 5e-3}, {std::atan(0.5 + 1e-3), 2e-2}}) {
+  for (const auto& [theta, tolerance] :
+       {std::pair<double, double>{radians(30.0), 5e-3}, {std::atan(0.5 + 1e-3), 2e-2}}) {
     const double expected = 0.5 * kG * (std::sin(theta) - 0.3 * std::cos(theta)) * 4.0;
     EXPECT_NEAR(cubeDownRamp(theta, 2.0).travelled, expected, tolerance * expected) << theta;
   }
@@ -273,8 +277,8 @@ TEST(ContactSolver, ABoxJustAboveTheLimitSlidesWithKineticFriction) {
 
 // ---- rolling ----------------------------------------------------------------------
 
-json roller(const std::string& shape, const Vec3& position, const Vec3& velocity, const Vec3& omega,
-            double mus, double muk, const Quat& turn = Quat::Identity()) {
+json roller(const std::string& shape, const Vec3& position, const Vec3& velocity, const Vec3& omega, double mus,
+            double muk, const Quat& turn = Quat::Identity()) {
   json s = shape == "sphere" ? json{{"type", "sphere"}, {"radius", 0.1}}
                              : json{{"type", "cylinder"}, {"radius", 0.1}, {"length", 0.3}};
   // a cylinder lies on its side with its axis along the turn's y
@@ -294,8 +298,8 @@ json roller(const std::string& shape, const Vec3& position, const Vec3& velocity
 // Rolling without slipping on a level floor needs no friction: v stays.
 TEST(ContactSolver, SphereAndCylinderRollOnALevelFloorWithoutLosingSpeed) {
   for (const char* shape : {"sphere", "cylinder"}) {
-    Sim sim(sceneOf({roller(shape, Vec3(0, 0, 0.1), Vec3(1, 0, 0), Vec3(0, 10, 0), 0.6, 0.4)},
-                    {floorSurface(0.6, 0.4)}));
+    Sim sim(
+        sceneOf({roller(shape, Vec3(0, 0, 0.1), Vec3(1, 0, 0), Vec3(0, 10, 0), 0.6, 0.4)}, {floorSurface(0.6, 0.4)}));
     double slowest = 1.0, quickest = 1.0;
     sim.run(2.0, [&] {
       slowest = std::min(slowest, sim.data.aux[0].V.x());
@@ -313,8 +317,12 @@ TEST(ContactSolver, SphereAndCylinderRollOnALevelFloorWithoutLosingSpeed) {
 // The distance down the slope after T is a T^2 / 2.
 double distanceDownIncline(const char* shape, double theta, double mus, double muk, double T) {
   const Quat turn(Eigen::AngleAxisd(theta, Vec3::UnitY()));
-  json ramp = {{"name", "ramp"}, {"min", {-5, -1, -1}}, {"max", {5, 1, 0}}, {"staticFriction", mus},
-               {"kineticFriction", muk}, {"restitution", 0.0},
+  json ramp = {{"name", "ramp"},
+               {"min", {-5, -1, -1}},
+               {"max", {5, 1, 0}},
+               {"staticFriction", mus},
+               {"kineticFriction", muk},
+               {"restitution", 0.0},
                {"orientation", {turn.w(), turn.x(), turn.y(), turn.z()}}};
   const Vec3 centre(0, 0, -0.5), normal = turn * Vec3::UnitZ(), down = turn * Vec3::UnitX();
   const Vec3 start = centre + 0.5 * normal + 0.1 * normal - 2.0 * down;
@@ -353,8 +361,10 @@ void expectStands(const json& bodies) {
   EXPECT_LT(sim.fastest(), 1e-3);
   EXPECT_LT(sim.deepestOverlap(), 1e-3);
   for (size_t i = 0; i < settled.size(); ++i)  // and where it was set down, within the seats' slop
-    EXPECT_LT((sim.data.Y[i].X - Vec3(bodies[i]["position"][0], bodies[i]["position"][1],
-                                      bodies[i]["position"][2])).norm(), 3e-3) << i;
+    EXPECT_LT(
+        (sim.data.Y[i].X - Vec3(bodies[i]["position"][0], bodies[i]["position"][1], bodies[i]["position"][2])).norm(),
+        3e-3)
+        << i;
 }
 
 TEST(ContactSolver, StackOfTenCubesStands) {
@@ -388,8 +398,7 @@ TEST(ContactSolver, WallOfTwentyBricksStands) {
 TEST(ContactSolver, ABodyOutOfCollisionsPassesThroughBodiesAndRestsOnSurfaces) {
   json ghost = box("ghost", Vec3::Constant(kEdge), Vec3(0, 0, 0.5));
   ghost["collision"] = false;
-  Sim sim(sceneOf(json::array({box("cube", Vec3::Constant(kEdge), Vec3(0, 0, 0.5 * kEdge)), ghost}),
-                  {floorSurface()}));
+  Sim sim(sceneOf(json::array({box("cube", Vec3::Constant(kEdge), Vec3(0, 0, 0.5 * kEdge)), ghost}), {floorSurface()}));
   sim.run(1.0);
   EXPECT_NEAR(sim.data.Y[1].X.z(), 0.5 * kEdge, 1e-4);  // within the slop
   EXPECT_NEAR(sim.data.Y[0].X.z(), 0.5 * kEdge, 1e-4);
@@ -444,8 +453,11 @@ TEST(ContactSolver, MechanicalEnergyNeverRisesThroughContact) {
 // A ball dropped from H bounces to xi^2 H whatever the step: the impact is located in
 // the step and answered by the seed's impulse at that instant.
 double reboundApex(double step) {
-  json ball = {{"name", "ball"}, {"shape", {{"type", "sphere"}, {"radius", 0.1}}}, {"mass", 1.0},
-               {"position", {0, 0, 1.1}}, {"restitution", 0.8}};
+  json ball = {{"name", "ball"},
+               {"shape", {{"type", "sphere"}, {"radius", 0.1}}},
+               {"mass", 1.0},
+               {"position", {0, 0, 1.1}},
+               {"restitution", 0.8}};
   Sim sim(sceneOf(ball, floorSurface(0.6, 0.6, 0.8), step));
   double apex = 0.0;
   bool bounced = false;
@@ -465,9 +477,12 @@ TEST(ContactSolver, BounceHeightIsXiSquaredWhateverTheStep) {
 TEST(ContactSolver, NewtonsCradlePassesTheImpactOn) {
   json balls = json::array();
   for (int i = 0; i < 4; ++i)
-    balls.push_back({{"name", "b" + std::to_string(i)}, {"shape", {{"type", "sphere"}, {"radius", 0.1}}},
-                     {"mass", 1.0}, {"position", {i == 0 ? -0.05 : 0.2 * i, 0, 1}},
-                     {"velocity", {i == 0 ? 1.0 : 0.0, 0, 0}}, {"restitution", 1.0}});
+    balls.push_back({{"name", "b" + std::to_string(i)},
+                     {"shape", {{"type", "sphere"}, {"radius", 0.1}}},
+                     {"mass", 1.0},
+                     {"position", {i == 0 ? -0.05 : 0.2 * i, 0, 1}},
+                     {"velocity", {i == 0 ? 1.0 : 0.0, 0, 0}},
+                     {"restitution", 1.0}});
   json scene = sceneOf(balls, floorSurface());
   scene["gravity"] = {0, 0, 0};
   Sim sim(scene);

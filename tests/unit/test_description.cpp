@@ -38,13 +38,13 @@ const Variable& find(const std::vector<Variable>& vars, const std::string& name)
 
 std::set<std::string> expectedBodyNames(const std::string& b) {
   std::set<std::string> names;
-  for (const char* f : {"position", "velocity", "angularVelocity", "linearMomentum",
-                        "angularMomentum", "force", "torque"})
+  for (const char* f :
+       {"position", "velocity", "angularVelocity", "linearMomentum", "angularMomentum", "force", "torque"})
     for (int i = 1; i <= 3; ++i) names.insert(b + "." + f + "[" + std::to_string(i) + "]");
   for (int i = 1; i <= 4; ++i) names.insert(b + ".orientation[" + std::to_string(i) + "]");
   names.insert(b + ".mass");
   names.insert(b + ".restitution");
-  names.insert(b + ".contacts");  // extension: contact points in the last step (issue 4)
+  names.insert(b + ".contacts");        // extension: contact points in the last step (issue 4)
   names.insert(b + ".staticFriction");  // issue 18: friction as tunable parameters
   names.insert(b + ".kineticFriction");
   for (const char* f : {"contactForce", "contactTorque"})  // issue 18: the contact loads
@@ -52,9 +52,7 @@ std::set<std::string> expectedBodyNames(const std::string& b) {
   return names;
 }
 
-bool contains(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
-}
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 class Description : public ::testing::Test {
  protected:
@@ -78,15 +76,13 @@ TEST_F(Description, ValueReferencesAreIndicesInOrderAndNamesUnique) {
 TEST_F(Description, VariableNamesAreThoseOfTheInterface) {
   std::map<std::string, std::set<std::string>> byOwner;
   for (const Variable& v : vars) {
-    const std::string owner =
-        v.body >= 0 ? scene.model.bodies[static_cast<size_t>(v.body)].name : std::string("world");
+    const std::string owner = v.body >= 0 ? scene.model.bodies[static_cast<size_t>(v.body)].name : std::string("world");
     byOwner[owner].insert(v.name);
   }
   EXPECT_EQ(byOwner["b"], expectedBodyNames("b"));
   EXPECT_EQ(byOwner["c"], expectedBodyNames("c"));
   // World variables: those of INTERFACE.md plus FMI's independent variable, time.
-  const std::set<std::string> world = {"time", "gravity[1]", "gravity[2]", "gravity[3]",
-                                       "solver.method", "solver.step",
+  const std::set<std::string> world = {"time", "gravity[1]", "gravity[2]", "gravity[3]", "solver.method", "solver.step",
                                        // extensions (issue 6): adaptive tolerance, step counts
                                        "solver.tolerance", "solver.steps", "solver.errorEstimate",
                                        // issue 7: the energy audit's limit
@@ -151,8 +147,7 @@ TEST_F(Description, XmlListsEveryVariableWithItsReferenceAndTheGuid) {
   EXPECT_TRUE(contains(xml, "guid=\"" + rigidfmu::sceneGuid(scene) + "\""));
   EXPECT_TRUE(contains(xml, "modelIdentifier=\"Demo\""));
   for (const Variable& v : vars)
-    EXPECT_TRUE(contains(xml, "name=\"" + v.name + "\" valueReference=\"" + std::to_string(v.vr) + "\""))
-        << v.name;
+    EXPECT_TRUE(contains(xml, "name=\"" + v.name + "\" valueReference=\"" + std::to_string(v.vr) + "\"")) << v.name;
 }
 
 // The FMI 3.0 description from the same table: every variable as a scalar with its FMI 2
@@ -206,15 +201,14 @@ TEST(Guid, OneChangedNumberGivesAnotherGuid) {
 
 TEST_F(Description, WriteValueRefusesNaNNamingTheVariable) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (const char* name : {"b.mass", "b.restitution", "gravity[2]", "solver.step", "b.force[1]",
-                           "b.position[3]", "solver.method"}) {
+  for (const char* name :
+       {"b.mass", "b.restitution", "gravity[2]", "solver.step", "b.force[1]", "b.position[3]", "solver.method"}) {
     const Variable& v = find(vars, name);
     const std::string why = rigidfmu::writeValue(v, nan, model, data, Phase::Setup);
     EXPECT_TRUE(contains(why, name)) << "\"" << why << "\"";
   }
-  const std::string inf = rigidfmu::writeValue(find(vars, "b.torque[2]"),
-                                               std::numeric_limits<double>::infinity(), model,
-                                               data, Phase::Running);
+  const std::string inf = rigidfmu::writeValue(find(vars, "b.torque[2]"), std::numeric_limits<double>::infinity(),
+                                               model, data, Phase::Running);
   EXPECT_TRUE(contains(inf, "b.torque[2]")) << inf;
   EXPECT_EQ(model.bodies[0].mass, 2.0);
   EXPECT_EQ(model.gravity.y(), -0.25);
@@ -272,9 +266,7 @@ TEST_F(Description, WriteValueRefusesUnknownSolverMethod) {
 }
 
 TEST_F(Description, ReadValueInSetupGivesStartValues) {
-  auto read = [&](const char* name) {
-    return rigidfmu::readValue(find(vars, name), model, data, Phase::Setup);
-  };
+  auto read = [&](const char* name) { return rigidfmu::readValue(find(vars, name), model, data, Phase::Setup); };
   EXPECT_EQ(read("gravity[1]"), 0.5);
   EXPECT_EQ(read("gravity[2]"), -0.25);
   EXPECT_EQ(read("gravity[3]"), -9.81);
@@ -295,8 +287,7 @@ TEST_F(Description, ReadValueInSetupGivesStartValues) {
     EXPECT_EQ(read(("b.force" + k).c_str()), 0.0);
     EXPECT_EQ(read(("b.torque" + k).c_str()), 0.0);
   }
-  for (int i = 0; i < 4; ++i)
-    EXPECT_NEAR(read(("b.orientation[" + std::to_string(i + 1) + "]").c_str()), q[i], 1e-15);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(read(("b.orientation[" + std::to_string(i + 1) + "]").c_str()), q[i], 1e-15);
 
   // L = R Ibody R^T omega: q = (0.6, 0.8, 0, 0) turns by 2 acos(0.6) about x.
   // Box 0.2 x 0.4 x 0.6, 2 kg: Ibody = m/12 diag(ly^2+lz^2, lx^2+lz^2, lx^2+ly^2).
@@ -304,9 +295,7 @@ TEST_F(Description, ReadValueInSetupGivesStartValues) {
   const rigid::Vec3 Ib = m / 12.0 * rigid::Vec3(0.16 + 0.36, 0.04 + 0.36, 0.04 + 0.16);
   const double c = 0.6 * 0.6 - 0.8 * 0.8, s = 2 * 0.6 * 0.8;  // cos, sin of the angle
   rigid::Mat3 R;
-  R << 1, 0, 0,
-       0, c, -s,
-       0, s, c;
+  R << 1, 0, 0, 0, c, -s, 0, s, c;
   const rigid::Mat3 I = R * rigid::Mat3(Ib.asDiagonal()) * R.transpose();
   const rigid::Vec3 L = I * rigid::Vec3(w[0], w[1], w[2]);
   for (int i = 0; i < 3; ++i)
@@ -320,12 +309,10 @@ TEST_F(Description, ReadValueInSetupGivesStartValues) {
 }
 
 TEST_F(Description, OutputsCannotBeWrittenWhileRunning) {
-  const std::string why =
-      rigidfmu::writeValue(find(vars, "b.position[1]"), 5.0, model, data, Phase::Running);
+  const std::string why = rigidfmu::writeValue(find(vars, "b.position[1]"), 5.0, model, data, Phase::Running);
   EXPECT_TRUE(contains(why, "b.position[1]")) << why;
   EXPECT_EQ(model.bodies[0].start.position.x(), 1.0);
-  EXPECT_TRUE(contains(rigidfmu::writeValue(find(vars, "b.linearMomentum[1]"), 1.0, model, data,
-                                            Phase::Setup),
+  EXPECT_TRUE(contains(rigidfmu::writeValue(find(vars, "b.linearMomentum[1]"), 1.0, model, data, Phase::Setup),
                        "b.linearMomentum[1]"));
 }
 
@@ -346,9 +333,9 @@ TEST(Parameters, MaterialAndFluidConstantsAreTunableParameters) {
     double start;
     const char* unit;
   };
-  const Row rows[] = {{"b.staticFriction", 0.7, "1"},   {"b.kineticFriction", 0.5, "1"},
-                      {"floor.staticFriction", 0.4, "1"}, {"floor.kineticFriction", 0.3, "1"},
-                      {"floor.restitution", 0.2, "1"},   {"pool.density", 998.2, "kg/m3"},
+  const Row rows[] = {{"b.staticFriction", 0.7, "1"},      {"b.kineticFriction", 0.5, "1"},
+                      {"floor.staticFriction", 0.4, "1"},  {"floor.kineticFriction", 0.3, "1"},
+                      {"floor.restitution", 0.2, "1"},     {"pool.density", 998.2, "kg/m3"},
                       {"pool.viscosity", 1.002e-3, "Pa.s"}};
   rigid::WorldModel model = scene.model;
   rigid::WorldData data = rigid::initialData(model);

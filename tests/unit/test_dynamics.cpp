@@ -16,9 +16,9 @@ using rigid::Mat3;
 using rigid::Quat;
 using rigid::Vec3;
 using rigid::test::bodyOf;
-using rigid::test::sphere;
 using rigid::test::maxAbs;
 using rigid::test::rotationOf;
+using rigid::test::sphere;
 using rigid::test::unitQuat;
 using rigid::test::world;
 
@@ -112,8 +112,7 @@ TEST(Dynamics, SpinningSphereOrientationFollowsClosedForm) {
   for (int n = 1; n <= 1000; ++n) {
     ASSERT_TRUE(rigid::step(model, data, h).ok);
     const double half = 0.5 * rate * n * h;
-    const Quat turn(std::cos(half), std::sin(half) * axis.x(), std::sin(half) * axis.y(),
-                    std::sin(half) * axis.z());
+    const Quat turn(std::cos(half), std::sin(half) * axis.x(), std::sin(half) * axis.y(), std::sin(half) * axis.z());
     const Quat q = turn * q0;  // world-frame rotation multiplies from the left
     ASSERT_LT((data.Y[0].q.coeffs() - q.coeffs()).cwiseAbs().maxCoeff(), 1e-10) << "step " << n;
   }

@@ -55,8 +55,8 @@ Quat spinningBody(rigid::Method method, double h, double T, double spin) {
   rigid::WorldModel model = world(method, Vec3::Zero());
   rigid::BodyConstants b = asymmetricBody(Vec3(1.0, 1.6, 2.2), 1.0);
   b.start.orientation = unitQuat(0.9, 0.2, -0.3, 0.25);
-  const Mat3 R = rotationOf(b.start.orientation.w(), b.start.orientation.x(),
-                            b.start.orientation.y(), b.start.orientation.z());
+  const Mat3 R =
+      rotationOf(b.start.orientation.w(), b.start.orientation.x(), b.start.orientation.y(), b.start.orientation.z());
   b.start.angularVelocity = R * (spin * Vec3(0.08, -0.05, 1.0));  // body z = major axis
   model.bodies.push_back(b);
   rigid::WorldData data = rigid::initialData(model);
@@ -133,9 +133,7 @@ TEST(Integrator, SplittingKeepsAngularMomentumWithNonDiagonalInertia) {
   rigid::WorldModel model = world(rigid::Method::Splitting, Vec3::Zero());
   rigid::BodyConstants b = asymmetricBody(Vec3(1.0, 2.0, 3.0), 1.0);
   Mat3 I;
-  I << 1.5, 0.2, -0.1,
-       0.2, 2.0, 0.3,
-      -0.1, 0.3, 2.5;
+  I << 1.5, 0.2, -0.1, 0.2, 2.0, 0.3, -0.1, 0.3, 2.5;
   rigid::setInertia(b, I);
   b.start.angularVelocity = Vec3(1.0, -2.0, 0.5);
   model.bodies.push_back(b);

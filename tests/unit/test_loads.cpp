@@ -19,10 +19,13 @@ using rigid::Vec3;
 // load point at (r, 0, 0) whose force is given in `frame`.
 rigid::WorldModel disc(const char* frame, double w0, const char* method = "rk4") {
   const std::string scene = std::string(R"({"name": "Disc", "gravity": [0, 0, 0],
-    "solver": {"method": ")") + method + R"(", "step": 0.001},
+    "solver": {"method": ")") +
+                            method + R"(", "step": 0.001},
     "bodies": [{"name": "disc", "shape": {"type": "cylinder", "radius": 0.5, "length": 0.1}, "mass": 2.0,
-                "angularVelocity": [0, 0, )" + std::to_string(w0) + R"(],
-                "loads": [{"name": "rim", "point": [0.5, 0, 0], "frame": ")" + frame + R"("}]}]})";
+                "angularVelocity": [0, 0, )" +
+                            std::to_string(w0) + R"(],
+                "loads": [{"name": "rim", "point": [0.5, 0, 0], "frame": ")" +
+                            frame + R"("}]}]})";
   return rigid::parseScene(scene).model;
 }
 

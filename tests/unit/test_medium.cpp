@@ -28,8 +28,8 @@ constexpr double kBig = 1e3;  // m, half-size of "unbounded" medium boxes
 // Errors of the approximations, as stated in docs/reports/media.md.
 constexpr double kLatheVolumeError = 2.5e-3;    // of the body's volume
 constexpr double kLatheCentroidError = 3e-3;    // of the body's largest dimension
-constexpr double kSphereMultiAxisError = 1e-3;    // of the ball's volume, cut along 2-3 axes
-constexpr double kSphereCentroidError = 1e-2;     // of the radius
+constexpr double kSphereMultiAxisError = 1e-3;  // of the ball's volume, cut along 2-3 axes
+constexpr double kSphereCentroidError = 1e-2;   // of the radius
 
 using rigid::test::box;
 using rigid::test::capsule;
@@ -37,9 +37,7 @@ using rigid::test::cylinder;
 using rigid::test::sphere;
 
 Mat3 rotX(double a) { return Eigen::AngleAxisd(a, Vec3::UnitX()).toRotationMatrix(); }
-Mat3 rotation(double angle, const Vec3& axis) {
-  return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
-}
+Mat3 rotation(double angle, const Vec3& axis) { return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix(); }
 
 // Medium box whose top face is the plane z = top, unbounded otherwise.
 Vec3 lowCorner() { return Vec3(-kBig, -kBig, -kBig); }
@@ -53,8 +51,7 @@ struct Reference {
   double volume = 0.0;
   Vec3 centroid = Vec3::Zero();
 };
-Reference rayIntegral(const Shape& s, const Vec3& X, const Mat3& R, const Vec3& mn,
-                      const Vec3& mx, int n = 500) {
+Reference rayIntegral(const Shape& s, const Vec3& X, const Mat3& R, const Vec3& mn, const Vec3& mx, int n = 500) {
   double V = 0.0;
   Vec3 M = Vec3::Zero();
   const Vec3 d = R.col(2);
@@ -79,8 +76,7 @@ Reference rayIntegral(const Shape& s, const Vec3& X, const Mat3& R, const Vec3& 
     const double w = s.size.x() * s.size.y() / (double(n) * n);
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j)
-        ray(s.size.x() * ((i + 0.5) / n - 0.5), s.size.y() * ((j + 0.5) / n - 0.5),
-            0.5 * s.size.z(), w);
+        ray(s.size.x() * ((i + 0.5) / n - 0.5), s.size.y() * ((j + 0.5) / n - 0.5), 0.5 * s.size.z(), w);
   } else {
     const double r = s.radius, dphi = 0.5 * kPi / n, dtheta = 2.0 * kPi / n;
     for (int i = 0; i < n; ++i) {
@@ -119,9 +115,7 @@ double largestDimension(const Shape& s) {
 // Cap of height h of a ball of radius r: volume and the distance of its centroid from
 // the ball's centre.
 double capVolume(double r, double h) { return kPi * h * h * (3.0 * r - h) / 3.0; }
-double capCentroidDistance(double r, double h) {
-  return 3.0 * (2.0 * r - h) * (2.0 * r - h) / (4.0 * (3.0 * r - h));
-}
+double capCentroidDistance(double r, double h) { return 3.0 * (2.0 * r - h) * (2.0 * r - h) / (4.0 * (3.0 * r - h)); }
 
 }  // namespace
 
@@ -133,16 +127,14 @@ TEST(Submerged, SphereCutByOnePlaneIsTheSphericalCap) {
   const double full = 4.0 / 3.0 * kPi * r * r * r;
   for (double h : {1e-4, 0.01, 0.15, 0.3, 0.45, 0.59, 0.6 - 1e-4}) {
     // Medium below the plane z = X.z - r + h: the cap at the bottom is inside.
-    SubmergedPart p = rigid::submergedPart(sphere(r), X, Mat3::Identity(), lowCorner(),
-                                           highCorner(X.z() - r + h));
+    SubmergedPart p = rigid::submergedPart(sphere(r), X, Mat3::Identity(), lowCorner(), highCorner(X.z() - r + h));
     const double below = h <= r ? capVolume(r, h) : full - capVolume(r, 2 * r - h);
     EXPECT_NEAR(p.volume, capVolume(r, h), 1e-13 * full) << "h = " << h;
     EXPECT_NEAR(p.volume, below, 1e-13 * full) << "h = " << h;
     EXPECT_NEAR(p.centroid.z(), X.z() - capCentroidDistance(r, h), 1e-12 * r) << "h = " << h;
     EXPECT_NEAR((p.centroid.head<2>() - X.head<2>()).norm(), 0.0, 1e-15);
     // Medium beyond the plane x = X.x + r - h (a wall of fluid at +x): the cap at +x.
-    p = rigid::submergedPart(sphere(r), X, Mat3::Identity(), Vec3(X.x() + r - h, -kBig, -kBig),
-                             Vec3(kBig, kBig, kBig));
+    p = rigid::submergedPart(sphere(r), X, Mat3::Identity(), Vec3(X.x() + r - h, -kBig, -kBig), Vec3(kBig, kBig, kBig));
     EXPECT_NEAR(p.volume, capVolume(r, h), 1e-13 * full) << "h = " << h;
     EXPECT_NEAR(p.centroid.x(), X.x() + capCentroidDistance(r, h), 1e-12 * r) << "h = " << h;
   }
@@ -152,9 +144,8 @@ TEST(Submerged, SphereInASlabBetweenTwoParallelPlanes) {
   const double r = 0.5;
   const Vec3 X(0.0, 0.0, 10.0);
   const double a = -0.2, b = 0.35;  // relative to the centre
-  const SubmergedPart p = rigid::submergedPart(sphere(r), X, Mat3::Identity(),
-                                               Vec3(-kBig, -kBig, X.z() + a),
-                                               Vec3(kBig, kBig, X.z() + b));
+  const SubmergedPart p =
+      rigid::submergedPart(sphere(r), X, Mat3::Identity(), Vec3(-kBig, -kBig, X.z() + a), Vec3(kBig, kBig, X.z() + b));
   // Discs pi (r^2 - z^2) integrated over [a, b].
   const double V = kPi * (r * r * (b - a) - (b * b * b - a * a * a) / 3.0);
   const double M = kPi * (r * r * (b * b - a * a) / 2.0 - (b * b * b * b - a * a * a * a) / 4.0);
@@ -189,16 +180,17 @@ TEST(Submerged, SphereCutAlongSeveralAxesWithinTheStatedError) {
         const Reference ref = rayIntegral(sphere(r), X, Mat3::Identity(), mn, mx, 200);
         const double err = std::abs(p.volume - ref.volume) / full;
         worst[corner] = std::max(worst[corner], err);
-        EXPECT_LT(err, kSphereMultiAxisError)
-            << "corner " << corner << " at " << X.transpose();
+        EXPECT_LT(err, kSphereMultiAxisError) << "corner " << corner << " at " << X.transpose();
         if (ref.volume > 0.02 * full) {
           const double errC = (p.centroid - ref.centroid).norm() / r;
           worstC[corner] = std::max(worstC[corner], errC);
           EXPECT_LT(errC, kSphereCentroidError) << "corner " << corner << " at " << X.transpose();
         }
       }
-  std::printf("ball at an edge: worst volume error %.2e of V, centroid %.2e of r; "
-              "at a corner: %.2e, %.2e\n", worst[0], worstC[0], worst[1], worstC[1]);
+  std::printf(
+      "ball at an edge: worst volume error %.2e of V, centroid %.2e of r; "
+      "at a corner: %.2e, %.2e\n",
+      worst[0], worstC[0], worst[1], worstC[1]);
 }
 
 TEST(Submerged, SphereStaysContinuousAsASecondFaceStartsToCut) {
@@ -208,11 +200,9 @@ TEST(Submerged, SphereStaysContinuousAsASecondFaceStartsToCut) {
   const double r = 0.25, step = 1e-7;
   const Vec3 mn(0.0, -kBig, -kBig), mx(kBig, kBig, 0.0);
   for (double edge : {r, 1.1 * r}) {  // the ball's and (about) the polyhedron's reach
-    SubmergedPart prev = rigid::submergedPart(sphere(r), Vec3(edge + 20 * step, 0, 0.05),
-                                              Mat3::Identity(), mn, mx);
+    SubmergedPart prev = rigid::submergedPart(sphere(r), Vec3(edge + 20 * step, 0, 0.05), Mat3::Identity(), mn, mx);
     for (int i = 19; i >= -20; --i) {
-      const SubmergedPart p = rigid::submergedPart(sphere(r), Vec3(edge + i * step, 0, 0.05),
-                                                   Mat3::Identity(), mn, mx);
+      const SubmergedPart p = rigid::submergedPart(sphere(r), Vec3(edge + i * step, 0, 0.05), Mat3::Identity(), mn, mx);
       // A continuous volume moves at most by the largest section times the step.
       EXPECT_NEAR(p.volume, prev.volume, 1.01 * kPi * r * r * step) << edge << " " << i;
       EXPECT_NEAR((p.centroid - prev.centroid).norm(), 0.0, 100 * step) << edge << " " << i;
@@ -228,8 +218,7 @@ TEST(Submerged, CubeTurned45DegreesAboutXCutThroughItsCentre) {
   // triangle with apex a/sqrt2 down, whose centroid is a / (3 sqrt2) below the centre.
   const double a = 0.8;
   const Vec3 X(2.0, 1.0, 0.0);
-  const SubmergedPart p = rigid::submergedPart(box(a, a, a), X, rotX(kPi / 4), lowCorner(),
-                                               highCorner(0.0));
+  const SubmergedPart p = rigid::submergedPart(box(a, a, a), X, rotX(kPi / 4), lowCorner(), highCorner(0.0));
   EXPECT_NEAR(p.volume, 0.5 * a * a * a, 1e-12 * a * a * a);
   EXPECT_NEAR(p.centroid.z(), -a / (3.0 * std::sqrt(2.0)), 1e-12 * a);
   EXPECT_NEAR(p.centroid.x(), X.x(), 1e-12 * a);
@@ -257,12 +246,12 @@ TEST(Submerged, TiltedBoxMatchesTheRayIntegration) {
     Vec3 mn, mx;
   };
   const Case cases[] = {
-      {Vec3(1, 0, 0), 0.3, Vec3(0, 0, 0.2), lowCorner(), highCorner(0.0)},    // one plane
+      {Vec3(1, 0, 0), 0.3, Vec3(0, 0, 0.2), lowCorner(), highCorner(0.0)},  // one plane
       {Vec3(1, 1, 0), 1.1, Vec3(0, 0, -0.3), lowCorner(), highCorner(0.0)},
-      {Vec3(1, 2, 3), 2.0, Vec3(0, 0, 0.45), lowCorner(), highCorner(0.0)},   // a corner dips
+      {Vec3(1, 2, 3), 2.0, Vec3(0, 0, 0.45), lowCorner(), highCorner(0.0)},                 // a corner dips
       {Vec3(-1, 2, 0.5), 0.8, Vec3(0.1, 0, -0.1), Vec3(0, -kBig, -kBig), highCorner(0.0)},  // edge
-      {Vec3(3, -1, 2), 2.5, Vec3(0.05, -0.1, 0.1), Vec3(0, 0, -kBig), highCorner(0.0)},  // corner
-      {Vec3(0, 1, 1), 0.6, Vec3(0, 0, 0), Vec3(-0.2, -0.25, -0.3), Vec3(0.15, 0.3, 0.2)},  // all six
+      {Vec3(3, -1, 2), 2.5, Vec3(0.05, -0.1, 0.1), Vec3(0, 0, -kBig), highCorner(0.0)},     // corner
+      {Vec3(0, 1, 1), 0.6, Vec3(0, 0, 0), Vec3(-0.2, -0.25, -0.3), Vec3(0.15, 0.3, 0.2)},   // all six
   };
   for (const Case& c : cases) {
     const Mat3 R = rotation(c.angle, c.axis);
@@ -279,21 +268,17 @@ TEST(Submerged, TiltedBoxMatchesTheRayIntegration) {
 TEST(Submerged, BoxFacesFlushWithTheMediumAreCountedOnce) {
   const Shape s = box(1.0, 1.0, 0.5);
   // Resting exactly on the floor of a tank and with its top exactly at the surface.
-  SubmergedPart p = rigid::submergedPart(s, Vec3(0, 0, 0.25), Mat3::Identity(),
-                                         Vec3(-2, -2, 0), Vec3(2, 2, 0.5));
+  SubmergedPart p = rigid::submergedPart(s, Vec3(0, 0, 0.25), Mat3::Identity(), Vec3(-2, -2, 0), Vec3(2, 2, 0.5));
   EXPECT_NEAR(p.volume, 0.5, 1e-9);
   EXPECT_NEAR(p.centroid.z(), 0.25, 1e-9);
   // Its sides flush with the tank's walls too: the body fills the tank exactly.
-  p = rigid::submergedPart(s, Vec3(0, 0, 0.25), Mat3::Identity(), Vec3(-0.5, -0.5, 0),
-                           Vec3(0.5, 0.5, 0.5));
+  p = rigid::submergedPart(s, Vec3(0, 0, 0.25), Mat3::Identity(), Vec3(-0.5, -0.5, 0), Vec3(0.5, 0.5, 0.5));
   EXPECT_NEAR(p.volume, 0.5, 1e-9);
   // Sitting on the surface, touching it from above: nothing is submerged.
-  p = rigid::submergedPart(s, Vec3(0, 0, 0.25), Mat3::Identity(), Vec3(-2, -2, -1),
-                           Vec3(2, 2, 0));
+  p = rigid::submergedPart(s, Vec3(0, 0, 0.25), Mat3::Identity(), Vec3(-2, -2, -1), Vec3(2, 2, 0));
   EXPECT_NEAR(p.volume, 0.0, 1e-9);
   // Half in, turned about z (the cut stays parallel to two faces).
-  p = rigid::submergedPart(s, Vec3(0.3, 0.1, 0.0), rotation(0.4, Vec3::UnitZ()), lowCorner(),
-                           highCorner(0.0));
+  p = rigid::submergedPart(s, Vec3(0.3, 0.1, 0.0), rotation(0.4, Vec3::UnitZ()), lowCorner(), highCorner(0.0));
   EXPECT_NEAR(p.volume, 0.25, 1e-12);
   EXPECT_NEAR(p.centroid.z(), -0.125, 1e-12);
 }
@@ -303,9 +288,7 @@ TEST(Submerged, BoxFacesFlushWithTheMediumAreCountedOnce) {
 namespace {
 // Area of the circular segment below the chord at height t (relative to the centre,
 // -r <= t <= r) and the integral of y over it.
-double segmentArea(double r, double t) {
-  return r * r * std::acos(-t / r) + t * std::sqrt(r * r - t * t);
-}
+double segmentArea(double r, double t) { return r * r * std::acos(-t / r) + t * std::sqrt(r * r - t * t); }
 double segmentMoment(double r, double t) { return -2.0 / 3.0 * std::pow(r * r - t * t, 1.5); }
 }  // namespace
 
@@ -339,8 +322,8 @@ TEST(Submerged, UprightCylinderIsExactAndCapsuleWithinError) {
   const double r = 0.15, l = 0.6;
   for (double h : {0.05, 0.3, 0.55}) {
     const Vec3 X(0, 0, 2.0);
-    const SubmergedPart p = rigid::submergedPart(cylinder(r, l), X, Mat3::Identity(),
-                                                 lowCorner(), highCorner(X.z() - 0.5 * l + h));
+    const SubmergedPart p =
+        rigid::submergedPart(cylinder(r, l), X, Mat3::Identity(), lowCorner(), highCorner(X.z() - 0.5 * l + h));
     EXPECT_NEAR(p.volume, kPi * r * r * h, 1e-12);
     EXPECT_NEAR(p.centroid.z(), X.z() - 0.5 * l + 0.5 * h, 1e-12);
     EXPECT_NEAR(p.centroid.head<2>().norm(), 0.0, 1e-12);
@@ -351,8 +334,7 @@ TEST(Submerged, UprightCylinderIsExactAndCapsuleWithinError) {
   for (double h : {0.05, 0.1, 0.3, 0.6}) {
     const Vec3 X(0, 0, 0);
     const double bottom = -0.5 * l - r;
-    const SubmergedPart p = rigid::submergedPart(c, X, Mat3::Identity(), lowCorner(),
-                                                 highCorner(bottom + h));
+    const SubmergedPart p = rigid::submergedPart(c, X, Mat3::Identity(), lowCorner(), highCorner(bottom + h));
     double Vexp, Mexp;
     if (h <= r) {
       Vexp = capVolume(r, h);
@@ -369,8 +351,7 @@ TEST(Submerged, UprightCylinderIsExactAndCapsuleWithinError) {
 
 TEST(Submerged, TiltedCylinderAndCapsuleMatchTheRayIntegration) {
   double worstV = 0.0, worstC = 0.0;
-  for (const Shape& s : {cylinder(0.2, 0.8), cylinder(0.3, 0.2), capsule(0.2, 0.8),
-                         capsule(0.25, 0.1)}) {
+  for (const Shape& s : {cylinder(0.2, 0.8), cylinder(0.3, 0.2), capsule(0.2, 0.8), capsule(0.25, 0.1)}) {
     const double V = rigid::shapeVolume(s), D = largestDimension(s);
     for (int i = 0; i < 8; ++i) {
       const Mat3 R = rotation(0.4 * i + 0.2, Vec3(1.0, 0.3 * i, 0.1));
@@ -381,8 +362,7 @@ TEST(Submerged, TiltedCylinderAndCapsuleMatchTheRayIntegration) {
         const SubmergedPart p = rigid::submergedPart(s, X, R, mn, highCorner(0.0));
         const Reference ref = rayIntegral(s, X, R, mn, highCorner(0.0), 400);
         worstV = std::max(worstV, std::abs(p.volume - ref.volume) / V);
-        if (ref.volume > 0.02 * V)
-          worstC = std::max(worstC, (p.centroid - ref.centroid).norm() / D);
+        if (ref.volume > 0.02 * V) worstC = std::max(worstC, (p.centroid - ref.centroid).norm() / D);
         EXPECT_NEAR(p.volume, ref.volume, kLatheVolumeError * V)
             << rigid::shapeTypeName(s.type) << " " << i << " " << corner;
         if (ref.volume > 0.02 * V) {  // the centroid of a sliver is a small lever anyway
@@ -392,8 +372,7 @@ TEST(Submerged, TiltedCylinderAndCapsuleMatchTheRayIntegration) {
       }
     }
   }
-  std::printf("cylinder/capsule polyhedra: worst volume error %.2e of V, centroid %.2e of D\n",
-              worstV, worstC);
+  std::printf("cylinder/capsule polyhedra: worst volume error %.2e of V, centroid %.2e of D\n", worstV, worstC);
 }
 
 // ---- buoyancy and drag through addMediumForces -------------------------------------------
@@ -417,8 +396,8 @@ rigid::Medium fluid(double density, double viscosity, const Vec3& mn, const Vec3
 struct Load {
   Vec3 F, T;
 };
-Load mediumLoad(const rigid::Medium& m, const rigid::BodyConstants& b, const Vec3& X,
-                const Quat& q, const Vec3& V, const Vec3& w, const Vec3& g) {
+Load mediumLoad(const rigid::Medium& m, const rigid::BodyConstants& b, const Vec3& X, const Quat& q, const Vec3& V,
+                const Vec3& w, const Vec3& g) {
   rigid::BodyState y;
   y.X = X;
   y.q = q;
@@ -449,12 +428,12 @@ TEST(Buoyancy, IsTheWeightOfTheDisplacedFluidAtTheCentreOfBuoyancy) {
     EXPECT_NEAR(L.T.norm(), 0.0, 1e-15);  // the centroid is below the centre of mass
   }
   // The gravity given is the one used: along x, buoyancy pushes along -x.
-  const Load L = mediumLoad(water, b, Vec3(0, 0, -1), Quat::Identity(), Vec3::Zero(),
-                            Vec3::Zero(), Vec3(3.0, 0.0, 0.0));
+  const Load L =
+      mediumLoad(water, b, Vec3(0, 0, -1), Quat::Identity(), Vec3::Zero(), Vec3::Zero(), Vec3(3.0, 0.0, 0.0));
   EXPECT_NEAR(L.F.x(), -rho * 3.0 * 4.0 / 3.0 * kPi * r * r * r, 1e-12);
   // Density 0: no buoyancy at all.
-  const Load none = mediumLoad(fluid(0.0, 1e-3, lowCorner(), highCorner(0.0)), b,
-                               Vec3(0, 0, -1), Quat::Identity(), Vec3::Zero(), Vec3::Zero(), kG);
+  const Load none = mediumLoad(fluid(0.0, 1e-3, lowCorner(), highCorner(0.0)), b, Vec3(0, 0, -1), Quat::Identity(),
+                               Vec3::Zero(), Vec3::Zero(), kG);
   EXPECT_EQ(none.F, Vec3::Zero());
   EXPECT_EQ(none.T, Vec3::Zero());
 }
@@ -486,8 +465,7 @@ TEST(Buoyancy, TiltedFloatingBoxFeelsTheWallSidedRightingMoment) {
 TEST(Drag, ProjectedAreasObeyCauchysFormula) {
   // For a convex body the projected area averaged over all directions is S/4.
   const int n = 20000;
-  for (const Shape& s : {sphere(0.3), box(0.2, 0.5, 1.3), cylinder(0.2, 0.9), capsule(0.1, 0.6),
-                         cylinder(0.5, 0.1)}) {
+  for (const Shape& s : {sphere(0.3), box(0.2, 0.5, 1.3), cylinder(0.2, 0.9), capsule(0.1, 0.6), cylinder(0.5, 0.1)}) {
     double sum = 0.0;
     for (int i = 0; i < n; ++i) {  // Fibonacci lattice on the unit sphere
       const double z = 1.0 - (2.0 * i + 1.0) / n;
@@ -495,14 +473,12 @@ TEST(Drag, ProjectedAreasObeyCauchysFormula) {
       const double rxy = std::sqrt(1.0 - z * z);
       sum += rigid::projectedArea(s, Vec3(rxy * std::cos(phi), rxy * std::sin(phi), z));
     }
-    EXPECT_NEAR(sum / n, rigid::surfaceArea(s) / 4.0, 1e-4 * rigid::surfaceArea(s))
-        << rigid::shapeTypeName(s.type);
+    EXPECT_NEAR(sum / n, rigid::surfaceArea(s) / 4.0, 1e-4 * rigid::surfaceArea(s)) << rigid::shapeTypeName(s.type);
   }
   // Along the axes of a box: the face's area.
   EXPECT_DOUBLE_EQ(rigid::projectedArea(box(0.2, 0.5, 1.3), Vec3::UnitY()), 0.2 * 1.3);
   EXPECT_DOUBLE_EQ(rigid::projectedArea(cylinder(0.2, 0.9), Vec3::UnitZ()), kPi * 0.04);
-  EXPECT_DOUBLE_EQ(rigid::projectedArea(capsule(0.1, 0.6), Vec3::UnitX()),
-                   kPi * 0.01 + 2 * 0.1 * 0.6);
+  EXPECT_DOUBLE_EQ(rigid::projectedArea(capsule(0.1, 0.6), Vec3::UnitX()), kPi * 0.01 + 2 * 0.1 * 0.6);
 }
 
 TEST(Drag, SphereInAViscousFluidFeelsStokesDrag) {
@@ -521,8 +497,7 @@ TEST(Drag, SphereInADenseFluidFeelsQuadraticDrag) {
   const auto b = bodyOf(sphere(r), 2.0);
   const rigid::Medium water = fluid(rho, 0.0, lowCorner(), highCorner(kBig));
   const Vec3 V(0.3, -1.2, 2.5);
-  const Load L = mediumLoad(water, b, Vec3(0, 0, 1), Quat::Identity(), V, Vec3::Zero(),
-                            Vec3::Zero());
+  const Load L = mediumLoad(water, b, Vec3(0, 0, 1), Quat::Identity(), V, Vec3::Zero(), Vec3::Zero());
   const Vec3 expected = -0.5 * rho * 0.47 * kPi * r * r * V.norm() * V;
   EXPECT_LT((L.F - expected).norm(), 1e-13 * expected.norm());
 }
@@ -579,8 +554,7 @@ TEST(Drag, OnlyTheSubmergedFractionFeelsDragAtTheCentreOfBuoyancy) {
   const Vec3 lever(0.0, 0.0, -3.0 * r / 8.0);
   EXPECT_LT((half.T - lever.cross(F)).norm(), 1e-12 * F.norm() * r);
   // Out of the fluid: nothing, to the bit.
-  const Load out = mediumLoad(syrup, b, Vec3(0, 0, r + 1e-9), Quat::Identity(), V,
-                              Vec3(1, 2, 3), kG);
+  const Load out = mediumLoad(syrup, b, Vec3(0, 0, r + 1e-9), Quat::Identity(), V, Vec3(1, 2, 3), kG);
   EXPECT_EQ(out.F, Vec3::Zero());
   EXPECT_EQ(out.T, Vec3::Zero());
 }

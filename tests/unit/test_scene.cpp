@@ -14,8 +14,8 @@ namespace {
 // `topExtra` inside the top-level object.
 std::string sceneWith(const std::string& bodyExtra = "", const std::string& topExtra = "",
                       const std::string& shape = R"({"type": "sphere", "radius": 0.1})") {
-  return R"({"name": "S", )" + topExtra + R"("bodies": [{"name": "b", "shape": )" + shape +
-         R"(, "mass": 1.0)" + bodyExtra + "}]}";
+  return R"({"name": "S", )" + topExtra + R"("bodies": [{"name": "b", "shape": )" + shape + R"(, "mass": 1.0)" +
+         bodyExtra + "}]}";
 }
 
 // Message of the SceneError that parsing `text` throws; records a failure if none.
@@ -35,22 +35,19 @@ std::string errorOf(const std::string& text) {
   return ::testing::AssertionFailure() << "message \"" << message << "\" lacks \"" << part << "\"";
 }
 
-#define EXPECT_SCENE_ERROR(text, ...)                                 \
-  do {                                                                \
-    const std::string msg_ = errorOf(text);                           \
+#define EXPECT_SCENE_ERROR(text, ...)                                           \
+  do {                                                                          \
+    const std::string msg_ = errorOf(text);                                     \
     for (const char* part_ : {__VA_ARGS__}) EXPECT_TRUE(contains(msg_, part_)); \
   } while (0)
 
-const char* const kSurface =
-    R"({"name": "floor", "min": [-5, -5, -1], "max": [5, 5, 0]})";
+const char* const kSurface = R"({"name": "floor", "min": [-5, -5, -1], "max": [5, 5, 0]})";
 const char* const kMedium = R"({"name": "pool", "type": "water", "min": [-1, -1, -2], "max": [1, 1, -1]})";
 
 }  // namespace
 
 // The base scene of the negative tests is itself valid.
-TEST(Scene, BaseSceneParses) {
-  EXPECT_NO_THROW(rigid::parseScene(sceneWith()));
-}
+TEST(Scene, BaseSceneParses) { EXPECT_NO_THROW(rigid::parseScene(sceneWith())); }
 
 TEST(Scene, MinimalSceneHasDocumentedDefaults) {
   const rigid::Scene s = rigid::parseScene(
@@ -110,9 +107,7 @@ TEST(Scene, NearUnitOrientationIsNormalised) {
   EXPECT_EQ(o.z(), 0.0);
 }
 
-TEST(Scene, NotValidJson) {
-  EXPECT_SCENE_ERROR(R"({"name": "S", "bodies": [)", "scene: not valid JSON");
-}
+TEST(Scene, NotValidJson) { EXPECT_SCENE_ERROR(R"({"name": "S", "bodies": [)", "scene: not valid JSON"); }
 
 TEST(Scene, TopLevelNotAnObject) {
   EXPECT_SCENE_ERROR("[1, 2, 3]", "scene: must be a JSON object");
@@ -125,8 +120,7 @@ TEST(Scene, UnknownTopLevelField) {
 }
 
 TEST(Scene, UnknownBodyField) {
-  EXPECT_SCENE_ERROR(sceneWith(R"(, "colour": "red")"), "bodies[0].colour: unknown field (known: ",
-                     "restitution");
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "colour": "red")"), "bodies[0].colour: unknown field (known: ", "restitution");
 }
 
 TEST(Scene, UnknownSolverField) {
@@ -148,8 +142,8 @@ TEST(Scene, SleepRules) {
   EXPECT_TRUE(fallback.sleep.enabled);
   EXPECT_EQ(fallback.sleep.speed, 0.01);
   EXPECT_EQ(fallback.sleep.time, 0.5);
-  const rigid::WorldModel set = rigid::parseScene(
-      sceneWith("", R"("solver": {"sleep": false, "sleepSpeed": 0.002, "sleepTime": 2}, )")).model;
+  const rigid::WorldModel set =
+      rigid::parseScene(sceneWith("", R"("solver": {"sleep": false, "sleepSpeed": 0.002, "sleepTime": 2}, )")).model;
   EXPECT_FALSE(set.sleep.enabled);
   EXPECT_EQ(set.sleep.speed, 0.002);
   EXPECT_EQ(set.sleep.time, 2.0);
@@ -162,8 +156,7 @@ TEST(Scene, SleepRules) {
 // Their FMU variables are NAME.field: a body and a surface named alike would share
 // NAME.staticFriction.
 TEST(Scene, BodiesSurfacesAndMediaShareOneNameSpace) {
-  const std::string floorNamedB =
-      R"("surfaces": [{"name": "b", "min": [-1, -1, -1], "max": [1, 1, 0]}], )";
+  const std::string floorNamedB = R"("surfaces": [{"name": "b", "min": [-1, -1, -1], "max": [1, 1, 0]}], )";
   EXPECT_SCENE_ERROR(sceneWith("", floorNamedB),
                      "surfaces[0].name: \"b\" is also the name of bodies[0]; bodies, surfaces and media share one "
                      "name space (their FMU variables are NAME.field)");
@@ -175,9 +168,11 @@ TEST(Scene, BodiesSurfacesAndMediaShareOneNameSpace) {
 }
 
 TEST(Scene, LoadPoints) {
-  const rigid::WorldModel m = rigid::parseScene(sceneWith(
-      R"(, "loads": [{"name": "thruster", "point": [0, 0, -0.1], "frame": "body"}, {"name": "cable", "point": [0.1, 0, 0]}])"))
-                                  .model;
+  const rigid::WorldModel m =
+      rigid::parseScene(
+          sceneWith(
+              R"(, "loads": [{"name": "thruster", "point": [0, 0, -0.1], "frame": "body"}, {"name": "cable", "point": [0.1, 0, 0]}])"))
+          .model;
   ASSERT_EQ(m.bodies[0].loads.size(), 2u);
   EXPECT_EQ(m.bodies[0].loads[0].name, "thruster");
   EXPECT_EQ(m.bodies[0].loads[0].point, rigid::Vec3(0, 0, -0.1));
@@ -193,35 +188,34 @@ TEST(Scene, LoadPoints) {
 }
 
 TEST(Scene, NameNotIdentifier) {
-  EXPECT_SCENE_ERROR(R"({"name": "2fast", "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1}]})",
-                     "name: must be a C identifier ([A-Za-z_][A-Za-z0-9_]*), got \"2fast\"");
+  EXPECT_SCENE_ERROR(
+      R"({"name": "2fast", "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1}]})",
+      "name: must be a C identifier ([A-Za-z_][A-Za-z0-9_]*), got \"2fast\"");
 }
 
 TEST(Scene, BodyNameNotIdentifier) {
-  EXPECT_SCENE_ERROR(R"({"name": "S", "bodies": [{"name": "my ball", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1}]})",
-                     "bodies[0].name: must be a C identifier", "got \"my ball\"");
+  EXPECT_SCENE_ERROR(
+      R"({"name": "S", "bodies": [{"name": "my ball", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1}]})",
+      "bodies[0].name: must be a C identifier", "got \"my ball\"");
 }
 
 TEST(Scene, GravityNotThreeNumbers) {
-  EXPECT_SCENE_ERROR(sceneWith("", R"("gravity": [0, -9.81], )"),
-                     "gravity: must be an array of 3 numbers");
+  EXPECT_SCENE_ERROR(sceneWith("", R"("gravity": [0, -9.81], )"), "gravity: must be an array of 3 numbers");
   EXPECT_SCENE_ERROR(sceneWith("", R"("gravity": [0, "down", 0], )"), "gravity[1]: must be a number");
 }
 
 TEST(Scene, SolverMethodUnknown) {
-  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"method": "rk5"}, )"),
-                     "solver.method: must be one of euler, rk4, symplecticEuler, splitting, lieRk4, dopri5, rosenbrock, got \"rk5\"");
+  EXPECT_SCENE_ERROR(
+      sceneWith("", R"("solver": {"method": "rk5"}, )"),
+      "solver.method: must be one of euler, rk4, symplecticEuler, splitting, lieRk4, dopri5, rosenbrock, got \"rk5\"");
 }
 
 TEST(Scene, SolverStepNotPositive) {
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"step": 0}, )"), "solver.step: must be > 0, got 0");
-  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"step": -0.001}, )"),
-                     "solver.step: must be > 0, got -0.001");
+  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"step": -0.001}, )"), "solver.step: must be > 0, got -0.001");
 }
 
-TEST(Scene, BodiesMissing) {
-  EXPECT_SCENE_ERROR(R"({"name": "S"})", "bodies: is required");
-}
+TEST(Scene, BodiesMissing) { EXPECT_SCENE_ERROR(R"({"name": "S"})", "bodies: is required"); }
 
 TEST(Scene, BodiesEmpty) {
   EXPECT_SCENE_ERROR(R"({"name": "S", "bodies": []})", "bodies: must hold at least one body");
@@ -278,10 +272,12 @@ TEST(Scene, MassMissing) {
 }
 
 TEST(Scene, MassNotPositive) {
-  EXPECT_SCENE_ERROR(R"({"name": "S", "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.1}, "mass": -1}]})",
-                     "bodies[0].mass: must be > 0, got -1");
-  EXPECT_SCENE_ERROR(R"({"name": "S", "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.1}, "mass": 0}]})",
-                     "bodies[0].mass: must be > 0, got 0");
+  EXPECT_SCENE_ERROR(
+      R"({"name": "S", "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.1}, "mass": -1}]})",
+      "bodies[0].mass: must be > 0, got -1");
+  EXPECT_SCENE_ERROR(
+      R"({"name": "S", "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.1}, "mass": 0}]})",
+      "bodies[0].mass: must be > 0, got 0");
 }
 
 TEST(Scene, InertiaNotSymmetric) {
@@ -313,10 +309,11 @@ TEST(Scene, InertiaAtTriangleLimitIsAccepted) {
 }
 
 TEST(Scene, OrientationNotUnit) {
-  EXPECT_SCENE_ERROR(sceneWith(R"(, "orientation": [1, 0, 0, 0.01])"),
-                     "bodies[0].orientation: must be a unit quaternion (w, x, y, z) within 1e-6, got |q| = 1.0000499987");
-  EXPECT_SCENE_ERROR(sceneWith(R"(, "orientation": [0, 0, 0, 0])"),
-                     "bodies[0].orientation: must be a unit quaternion", "got |q| = 0");
+  EXPECT_SCENE_ERROR(
+      sceneWith(R"(, "orientation": [1, 0, 0, 0.01])"),
+      "bodies[0].orientation: must be a unit quaternion (w, x, y, z) within 1e-6, got |q| = 1.0000499987");
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "orientation": [0, 0, 0, 0])"), "bodies[0].orientation: must be a unit quaternion",
+                     "got |q| = 0");
 }
 
 TEST(Scene, RestitutionOutsideUnitInterval) {
@@ -350,30 +347,45 @@ TEST(Scene, DuplicateSurfaceName) {
 }
 
 TEST(Scene, MediumTypeUnknown) {
-  EXPECT_SCENE_ERROR(sceneWith("", R"("media": [{"name": "tank", "type": "oil", "min": [-1, -1, -1], "max": [1, 1, 1]}], )"),
-                     "media[0].type: must be one of air, water, custom, got \"oil\"");
+  EXPECT_SCENE_ERROR(
+      sceneWith("", R"("media": [{"name": "tank", "type": "oil", "min": [-1, -1, -1], "max": [1, 1, 1]}], )"),
+      "media[0].type: must be one of air, water, custom, got \"oil\"");
 }
 
 TEST(Scene, MediumDensityNegative) {
   // 0 is allowed (a medium with viscous drag only); below 0 is not.
-  EXPECT_SCENE_ERROR(sceneWith("", R"("media": [{"name": "tank", "type": "water", "min": [-1, -1, -1], "max": [1, 1, 1], "density": -1}], )"),
-                     "media[0].density: must be >= 0, got -1");
-  EXPECT_SCENE_ERROR(sceneWith("", R"("media": [{"name": "tank", "type": "custom", "min": [-1, -1, -1], "max": [1, 1, 1], "density": -5, "viscosity": 1}], )"),
-                     "media[0].density: must be >= 0, got -5");
-  const rigid::Scene s = rigid::parseScene(sceneWith("", R"("media": [{"name": "tank", "type": "custom", "min": [-1, -1, -1], "max": [1, 1, 1], "density": 0, "viscosity": 2}], )"));
+  EXPECT_SCENE_ERROR(
+      sceneWith(
+          "",
+          R"("media": [{"name": "tank", "type": "water", "min": [-1, -1, -1], "max": [1, 1, 1], "density": -1}], )"),
+      "media[0].density: must be >= 0, got -1");
+  EXPECT_SCENE_ERROR(
+      sceneWith(
+          "",
+          R"("media": [{"name": "tank", "type": "custom", "min": [-1, -1, -1], "max": [1, 1, 1], "density": -5, "viscosity": 1}], )"),
+      "media[0].density: must be >= 0, got -5");
+  const rigid::Scene s = rigid::parseScene(sceneWith(
+      "",
+      R"("media": [{"name": "tank", "type": "custom", "min": [-1, -1, -1], "max": [1, 1, 1], "density": 0, "viscosity": 2}], )"));
   ASSERT_EQ(s.model.media.size(), 1u);
   EXPECT_EQ(s.model.media[0].density, 0.0);
   EXPECT_EQ(s.model.media[0].viscosity, 2.0);
 }
 
 TEST(Scene, MediumViscosityNegative) {
-  EXPECT_SCENE_ERROR(sceneWith("", R"("media": [{"name": "tank", "type": "air", "min": [-1, -1, -1], "max": [1, 1, 1], "viscosity": -0.001}], )"),
-                     "media[0].viscosity: must be >= 0, got -0.001");
+  EXPECT_SCENE_ERROR(
+      sceneWith(
+          "",
+          R"("media": [{"name": "tank", "type": "air", "min": [-1, -1, -1], "max": [1, 1, 1], "viscosity": -0.001}], )"),
+      "media[0].viscosity: must be >= 0, got -0.001");
 }
 
 TEST(Scene, CustomMediumWithoutDensity) {
-  EXPECT_SCENE_ERROR(sceneWith("", R"("media": [{"name": "tank", "type": "custom", "min": [-1, -1, -1], "max": [1, 1, 1], "viscosity": 0.1}], )"),
-                     "media[0].density: is required for a custom medium");
+  EXPECT_SCENE_ERROR(
+      sceneWith(
+          "",
+          R"("media": [{"name": "tank", "type": "custom", "min": [-1, -1, -1], "max": [1, 1, 1], "viscosity": 0.1}], )"),
+      "media[0].density: is required for a custom medium");
 }
 
 TEST(Scene, SurfaceIsRead) {
@@ -389,7 +401,7 @@ TEST(Scene, SurfaceIsRead) {
 TEST(Scene, WaterMediumTakesWatersValues) {
   const rigid::Scene s = rigid::parseScene(sceneWith("", std::string(R"("media": [)") + kMedium + "], "));
   ASSERT_EQ(s.model.media.size(), 1u);
-  EXPECT_EQ(s.model.media[0].density, 998.2);      // kg/m^3, water at 20 C
+  EXPECT_EQ(s.model.media[0].density, 998.2);       // kg/m^3, water at 20 C
   EXPECT_EQ(s.model.media[0].viscosity, 1.002e-3);  // Pa s
 }
 
@@ -407,14 +419,14 @@ TEST(Scene, ExposedVariablesAreRead) {
 }
 
 TEST(Scene, ExposedOutputUnknown) {
-  EXPECT_SCENE_ERROR(sceneWith(R"(, "outputs": ["position", "speed"])"),
-                     "bodies[0].outputs[1]: must be one of position, orientation, velocity, "
-                     "angularVelocity, linearMomentum, angularMomentum, contacts, contactForce, contactTorque, got \"speed\"");
+  EXPECT_SCENE_ERROR(
+      sceneWith(R"(, "outputs": ["position", "speed"])"),
+      "bodies[0].outputs[1]: must be one of position, orientation, velocity, "
+      "angularVelocity, linearMomentum, angularMomentum, contacts, contactForce, contactTorque, got \"speed\"");
 }
 
 TEST(Scene, ExposedInputTwice) {
-  EXPECT_SCENE_ERROR(sceneWith(R"(, "inputs": ["force", "force"])"),
-                     "bodies[0].inputs[1]: \"force\" is listed twice");
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "inputs": ["force", "force"])"), "bodies[0].inputs[1]: \"force\" is listed twice");
 }
 
 TEST(Scene, ExposedListNotAnArray) {

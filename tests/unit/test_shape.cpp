@@ -43,12 +43,24 @@ struct Revolution {
 };
 void addPiece(Revolution& out, const std::function<double(double)>& rho, double z0, double z1) {
   const int n = 20000;
-  out.volume += simpson([&](double z) { const double p = rho(z); return kPi * p * p; }, z0, z1, n);
-  out.Izz += simpson([&](double z) { const double p = rho(z); return 0.5 * kPi * p * p * p * p; },
-                     z0, z1, n);
+  out.volume += simpson(
+      [&](double z) {
+        const double p = rho(z);
+        return kPi * p * p;
+      },
+      z0, z1, n);
+  out.Izz += simpson(
+      [&](double z) {
+        const double p = rho(z);
+        return 0.5 * kPi * p * p * p * p;
+      },
+      z0, z1, n);
   out.Ixx += simpson(
-      [&](double z) { const double p = rho(z); return kPi * p * p * (0.25 * p * p + z * z); }, z0,
-      z1, n);
+      [&](double z) {
+        const double p = rho(z);
+        return kPi * p * p * (0.25 * p * p + z * z);
+      },
+      z0, z1, n);
 }
 
 }  // namespace
@@ -81,7 +93,8 @@ TEST(Shape, CylinderVolumeAndInertia) {
 TEST(Shape, CylinderInertiaMatchesNumericalIntegration) {
   const double r = 0.2, l = 1.3, m = 3.0;
   Revolution rev;
-  addPiece(rev, [&](double) { return r; }, -l / 2, l / 2);
+  addPiece(
+      rev, [&](double) { return r; }, -l / 2, l / 2);
   const double rhoDensity = m / rev.volume;
   const rigid::Vec3 I = rigid::solidPrincipalInertia(cylinder(r, l), m);
   expectRelNear(rev.volume, rigid::shapeVolume(cylinder(r, l)), 1e-10, "volume");
@@ -96,11 +109,12 @@ TEST(Shape, CapsuleMatchesNumericalIntegration) {
   for (const auto& [r, l] : {std::pair{0.25, 1.0}, std::pair{0.5, 0.2}, std::pair{0.1, 3.0}}) {
     Revolution rev;
     const double h = l / 2;
-    addPiece(rev, [&](double z) { return std::sqrt(std::max(0.0, r * r - (z + h) * (z + h))); },
-             -h - r, -h);
-    addPiece(rev, [&](double) { return r; }, -h, h);
-    addPiece(rev, [&](double z) { return std::sqrt(std::max(0.0, r * r - (z - h) * (z - h))); },
-             h, h + r);
+    addPiece(
+        rev, [&](double z) { return std::sqrt(std::max(0.0, r * r - (z + h) * (z + h))); }, -h - r, -h);
+    addPiece(
+        rev, [&](double) { return r; }, -h, h);
+    addPiece(
+        rev, [&](double z) { return std::sqrt(std::max(0.0, r * r - (z - h) * (z - h))); }, h, h + r);
     const double density = m / rev.volume;
     SCOPED_TRACE("r=" + std::to_string(r) + " l=" + std::to_string(l));
     // Simpson on the caps: sqrt profile squared is polynomial, so the integrands are
@@ -172,9 +186,7 @@ TEST(Body, SetInertiaIsKeptWhenMassChanges) {
   b.shape = sphere(0.5);
   rigid::setMass(b, 1.0);
   rigid::Mat3 I;
-  I << 2.0, 0.3, -0.1,
-       0.3, 1.5, 0.2,
-      -0.1, 0.2, 1.8;
+  I << 2.0, 0.3, -0.1, 0.3, 1.5, 0.2, -0.1, 0.2, 1.8;
   rigid::setInertia(b, I);
   EXPECT_FALSE(b.inertiaFromShape);
   rigid::setMass(b, 10.0);

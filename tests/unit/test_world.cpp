@@ -61,8 +61,8 @@ TEST(World, EnergyAuditRefusesExplicitEulersGainOnAFreeRotation) {
     // Refused, not taken: the state is that of the last accepted step, within the limit.
     const rigid::BodyState before = data.Y[0];
     EXPECT_FALSE(rigid::step(model, data, 1e-3).ok);
-    EXPECT_TRUE(before.X == data.Y[0].X && before.q.coeffs() == data.Y[0].q.coeffs() &&
-                before.P == data.Y[0].P && before.L == data.Y[0].L);
+    EXPECT_TRUE(before.X == data.Y[0].X && before.q.coeffs() == data.Y[0].q.coeffs() && before.P == data.Y[0].P &&
+                before.L == data.Y[0].L);
     EXPECT_LE(twiceEnergy(data) / E0 - 1.0, limit * (1 + 1e-9));
     // Unchecked (0), the same run goes on.
     model.energyGainLimit = 0.0;

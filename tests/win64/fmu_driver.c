@@ -80,16 +80,23 @@ static struct {
   fmi3DeserializeFMUStateTYPE* DeserializeFMUState;
   fmi3ResetTYPE* Reset;
 } fmi;
+// a list of names, laid out by hand
+// clang-format off
 #define FUNCTIONS(F)                                                                                        \
   F(InstantiateCoSimulation) F(FreeInstance) F(EnterInitializationMode) F(ExitInitializationMode) F(DoStep) \
   F(SetFloat64) F(GetFloat64) F(GetFMUState) F(SetFMUState) F(FreeFMUState) F(SerializedFMUStateSize)       \
   F(SerializeFMUState) F(DeserializeFMUState) F(Reset)
+// clang-format on
 
 static Instance instantiate(const char* token, const char* resources) {
-  return fmi.InstantiateCoSimulation("driver", token, resources, fmi3False, fmi3False, fmi3False, fmi3False, NULL,
-                                     0, NULL, log_message, NULL);
+  return fmi.InstantiateCoSimulation("driver", token, resources, fmi3False, fmi3False, fmi3False, fmi3False, NULL, 0,
+                                     NULL, log_message, NULL);
 }
-static Status setup(Instance c) { (void)c; return fmi3OK; } /* FMI 3: part of EnterInitializationMode */
+/* FMI 3: part of EnterInitializationMode */
+static Status setup(Instance c) {
+  (void)c;
+  return fmi3OK;
+}
 static Status enter_initialization(Instance c) {
   return fmi.EnterInitializationMode(c, fmi3False, 0.0, 0.0, fmi3False, 0.0);
 }
@@ -151,10 +158,13 @@ static struct {
   fmi2DeSerializeFMUstateTYPE* DeSerializeFMUstate;
   fmi2ResetTYPE* Reset;
 } fmi;
+// a list of names, laid out by hand
+// clang-format off
 #define FUNCTIONS(F)                                                                                              \
   F(Instantiate) F(FreeInstance) F(SetupExperiment) F(EnterInitializationMode) F(ExitInitializationMode) F(DoStep) \
   F(SetReal) F(GetReal) F(GetFMUstate) F(SetFMUstate) F(FreeFMUstate) F(SerializedFMUstateSize)                  \
   F(SerializeFMUstate) F(DeSerializeFMUstate) F(Reset)
+// clang-format on
 
 static fmi2CallbackFunctions callbacks = {log_message, allocate, free, NULL, NULL};
 static Instance instantiate(const char* guid, const char* resources) {
@@ -184,7 +194,7 @@ static void free_instance(Instance c) { fmi.FreeInstance(c); }
 
 static int load(Library lib) {
 #define LOAD(f)                                                        \
-  if (!(*(void**)&fmi.f = find_symbol(lib, PREFIX #f))) {              \
+  if (!(*(void**)(&fmi.f) = find_symbol(lib, PREFIX #f))) {            \
     fprintf(stderr, "the library does not export %s%s\n", PREFIX, #f); \
     return 0;                                                          \
   }

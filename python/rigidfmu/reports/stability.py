@@ -1083,7 +1083,7 @@ def write_table(path, all_cases, methods, rows, quick, peers, elapsed):
     lines.append("Energy drift: (E − E0) / scale at the communication point where its magnitude is largest (signed: − "
                  "is a loss), or for dissipative cases the largest gain (the scale is named with each case). Run time: "
                  "the stepping loop through fmpy, reading every output at every communication point (full mode: median "
-                 "of {REPEATS} runs; quick mode: one run). "
+                 f"of {REPEATS} runs; quick mode: one run). "
                  "Peers: MuJoCo on the same problem where measured (full mode).")
     lines.append("")
     lines.append("| case | method | outcome | error | energy drift | max \\|q\\|−1 | run time | peers | details |")

@@ -9,6 +9,8 @@
 //                friction impulse in the disc |lambda_t| <= mu lambda_n (mu_s while the
 //                point sticks, mu_k once it slides), speculative points allowed to
 //                close their gap in the step and no more;
+//   shock        a last sweep from the surfaces upwards, each row's lower body held:
+//                what the passes left of a column's rocking is taken out level by level;
 //   positions    split impulse: pseudo-velocities that move bodies out of overlap
 //                and are then dropped, so that no energy is added;
 //   store        the points and their impulses for the next step (ContactMemory).
@@ -62,6 +64,10 @@ constexpr double kVelocityTolerance = 1e-5;  // m/s: stop when no impulse change
 constexpr int kBlockAfter = 8;
 constexpr int kMaxBlockRows = 32;
 constexpr double kBlockMassRatio = 100.0;
+// Shock propagation: after the passes, one sweep from the surfaces upwards in which a
+// row's lower body is held as if infinitely heavy, each pair's points taken this many
+// times at most (a tall column's residual rocking is the slowest mode of the passes).
+constexpr int kShockPairPasses = 4;
 constexpr int kPositionIterations = 8;   // split-impulse passes
 constexpr double kSlop = 1e-4;           // m, overlap left alone (a resting body's seat)
 constexpr double kBaumgarte = 0.2;       // share of the overlap beyond the slop removed per step

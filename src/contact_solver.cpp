@@ -390,14 +390,18 @@ void noteChange(Solver& s, const Row& r, double change) {
 // made at the point (m/s).
 double frictionLimit(const Row& r) { return (r.sliding ? r.k.muk : r.k.mus) * r.lambdaN; }
 
+// (l1, l2) scaled onto the disc |l| <= limit when it is outside.
+void clampToDisc(double& l1, double& l2, double limit) {
+  const double magnitude = length(l1, l2);
+  if (!(magnitude > limit)) return;
+  const double scale = magnitude > 0.0 ? limit / magnitude : 0.0;
+  l1 *= scale, l2 *= scale;
+}
+
 double solveFriction(Solver& s, Row& r, std::vector<BodyState>& Y) {
   const double v1 = relativeVelocity(s, r, r.t1), v2 = relativeVelocity(s, r, r.t2);
   double l1 = r.lambdaT1 - r.t1.mass * v1, l2 = r.lambdaT2 - r.t2.mass * v2;
-  const double magnitude = length(l1, l2), limit = frictionLimit(r);
-  if (magnitude > limit) {
-    const double scale = magnitude > 0.0 ? limit / magnitude : 0.0;
-    l1 *= scale, l2 *= scale;
-  }
+  clampToDisc(l1, l2, frictionLimit(r));
   const double d1 = l1 - r.lambdaT1, d2 = l2 - r.lambdaT2;
   r.lambdaT1 = l1, r.lambdaT2 = l2;
   applyImpulse(s, r, r.t1, d1, Y);
@@ -670,11 +674,7 @@ double solveRowHeld(Solver& s, Row& r, int side, std::vector<BodyState>& Y) {
   applyOneSided(s, r, r.n, side, dn, Y);
   const double m1 = heldMass(s, r, r.t1, side), m2 = heldMass(s, r, r.t2, side);
   double l1 = r.lambdaT1 - m1 * relativeVelocity(s, r, r.t1), l2 = r.lambdaT2 - m2 * relativeVelocity(s, r, r.t2);
-  const double magnitude = length(l1, l2), limit = frictionLimit(r);
-  if (magnitude > limit) {
-    const double scale = magnitude > 0.0 ? limit / magnitude : 0.0;
-    l1 *= scale, l2 *= scale;
-  }
+  clampToDisc(l1, l2, frictionLimit(r));
   const double d1 = l1 - r.lambdaT1, d2 = l2 - r.lambdaT2;
   r.lambdaT1 = l1, r.lambdaT2 = l2;
   applyOneSided(s, r, r.t1, side, d1, Y);

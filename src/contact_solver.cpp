@@ -147,20 +147,17 @@ double relativeVelocity(const Solver& s, const Row& r, const Axis& x) {
   return x.d.dot(B.v - A.v) + x.rbXd.dot(B.w) - x.raXd.dot(A.w);
 }
 
-// The impulse lambda along the axis: velocities and the momenta of Y.
-void applyImpulse(Solver& s, const Row& r, const Axis& x, double lambda, std::vector<BodyState>& Y) {
+// The impulse lambda along the axis, on the bodies' velocities (storeMomenta hands the
+// change to Y's momenta once the solve is done).
+void applyImpulse(Solver& s, const Row& r, const Axis& x, double lambda) {
   if (lambda == 0.0) return;
   SolverBody& A = s.bodies[r.a];
   SolverBody& B = s.bodies[r.b];
   A.v -= lambda * A.invMass * x.d;
   A.w -= lambda * x.spinA;
-  Y[r.a].P -= lambda * x.d;
-  Y[r.a].L -= lambda * x.raXd;
   if (r.b == s.staticSlot()) return;
   B.v += lambda * B.invMass * x.d;
   B.w += lambda * x.spinB;
-  Y[r.b].P += lambda * x.d;
-  Y[r.b].L += lambda * x.rbXd;
 }
 
 // ---- prepare ---------------------------------------------------------------------
@@ -248,9 +245,9 @@ void impactRows(const Solver& s, std::vector<Row>& out) {
 
 // The seed's impulse at one merged point, j = -(1 + xi) vrel m_eff, then a Coulomb
 // friction impulse against the slip, |jt| <= mu j (static when it stops the slip).
-void impact(Solver& s, const Row& r, double vrel, std::vector<BodyState>& Y, std::vector<SurfacePush>& pushes) {
+void impact(Solver& s, const Row& r, double vrel, std::vector<SurfacePush>& pushes) {
   const double j = -(1.0 + r.k.xi) * vrel * r.n.mass;
-  applyImpulse(s, r, r.n, j, Y);
+  applyImpulse(s, r, r.n, j);
   const bool onSurface = r.b == s.staticSlot();
   if (onSurface) pushes.push_back({r.a, r.contact->surface, j * r.n.d});
   const SolverBody& A = s.bodies[r.a];
@@ -261,7 +258,7 @@ void impact(Solver& s, const Row& r, double vrel, std::vector<BodyState>& Y, std
   const Axis t = axisOf(A, B, r.ra, r.rb, -ut.normalized());
   const double stick = ut.norm() * t.mass;
   const double jt = stick <= r.k.mus * j ? stick : r.k.muk * j;
-  applyImpulse(s, r, t, jt, Y);
+  applyImpulse(s, r, t, jt);
   if (onSurface) pushes.back().impulse += jt * t.d;
 }
 
@@ -269,7 +266,7 @@ void impact(Solver& s, const Row& r, double vrel, std::vector<BodyState>& Y, std
 // impulses (which would take a bounce back): passes over the pairs while one of them
 // approaches faster than a resting body can, so that a chain of touching bodies passes
 // an impact on (Newton's cradle). Returns the passes taken.
-int answerImpacts(Solver& s, const ContactStep& step, std::vector<BodyState>& Y, std::vector<SurfacePush>& pushes) {
+int answerImpacts(Solver& s, const ContactStep& step, std::vector<SurfacePush>& pushes) {
   const bool any = std::any_of(s.rows.begin(), s.rows.end(), [&](const Row& r) {
     return r.depth >= -kTouching && relativeVelocity(s, r, r.n) < -step.restingSpeed;
   });
@@ -282,7 +279,7 @@ int answerImpacts(Solver& s, const ContactStep& step, std::vector<BodyState>& Y,
     for (const Row& r : rows) {
       const double vrel = relativeVelocity(s, r, r.n);
       if (vrel >= -step.restingSpeed) continue;
-      impact(s, r, vrel, Y, pushes);
+      impact(s, r, vrel, pushes);
       struck = true;
     }
     if (struck) ++passes;
@@ -299,23 +296,19 @@ void markVelocities(Solver& s) {
 }
 
 // The impulses (lambda_n, lambda_t1, lambda_t2) of one row at once.
-void applyRowImpulse(Solver& s, const Row& r, double ln, double l1, double l2, std::vector<BodyState>& Y) {
+void applyRowImpulse(Solver& s, const Row& r, double ln, double l1, double l2) {
   const Vec3 J = ln * r.n.d + l1 * r.t1.d + l2 * r.t2.d;
   SolverBody& A = s.bodies[r.a];
   A.v -= A.invMass * J;
   A.w -= ln * r.n.spinA + l1 * r.t1.spinA + l2 * r.t2.spinA;
-  Y[r.a].P -= J;
-  Y[r.a].L -= ln * r.n.raXd + l1 * r.t1.raXd + l2 * r.t2.raXd;
   if (r.b == s.staticSlot()) return;
   SolverBody& B = s.bodies[r.b];
   B.v += B.invMass * J;
   B.w += ln * r.n.spinB + l1 * r.t1.spinB + l2 * r.t2.spinB;
-  Y[r.b].P += J;
-  Y[r.b].L += ln * r.n.rbXd + l1 * r.t1.rbXd + l2 * r.t2.rbXd;
 }
 
 // One row takes the impulses of memory[m], clamped to its friction disc.
-void remember(const ContactMemory& m, Solver& s, Row& r, std::vector<BodyState>& Y) {
+void remember(const ContactMemory& m, Solver& s, Row& r) {
   r.sliding = m.sliding;
   r.remembered = true;
   r.lambdaN = m.normalImpulse;
@@ -323,14 +316,14 @@ void remember(const ContactMemory& m, Solver& s, Row& r, std::vector<BodyState>&
   r.lambdaT2 = m.tangentImpulse.dot(r.t2.d);
   const double limit = (r.sliding ? r.k.muk : r.k.mus) * r.lambdaN, t = length(r.lambdaT1, r.lambdaT2);
   if (t > limit) r.lambdaT1 *= limit / t, r.lambdaT2 *= limit / t;
-  applyRowImpulse(s, r, r.lambdaN, r.lambdaT1, r.lambdaT2, Y);
+  applyRowImpulse(s, r, r.lambdaN, r.lambdaT1, r.lambdaT2);
 }
 
 // Each row takes the impulses of last step's nearest point of the same pair (body a's
 // frame, within kMatchDistance), each old point used once, and applies them. Rows and
 // memory are both in the detector's pair order: one search per pair. A body sticks or
 // slides as a whole, so a pair's new points take its remembered state.
-void warmStart(const std::vector<ContactMemory>& memory, Solver& s, std::vector<BodyState>& Y) {
+void warmStart(const std::vector<ContactMemory>& memory, Solver& s) {
   s.used.assign(memory.size(), 0);
   auto before = [](const ContactMemory& m, const std::tuple<int, int, int>& key) {
     return pairKey(m.a, m.b, m.surface) < key;
@@ -355,7 +348,7 @@ void warmStart(const std::vector<ContactMemory>& memory, Solver& s, std::vector<
       }
       if (best == memory.size()) continue;
       s.used[best] = 1;
-      remember(memory[best], s, r, Y);
+      remember(memory[best], s, r);
       state = r.sliding ? 1 : 0;
     }
     if (state >= 0)
@@ -368,12 +361,12 @@ void warmStart(const std::vector<ContactMemory>& memory, Solver& s, std::vector<
 
 // Normal: lambda_n += -m_n (v_n - target), clamped at 0 accumulated. Returns the
 // velocity change it made at the point (m/s).
-double solveNormal(Solver& s, Row& r, std::vector<BodyState>& Y) {
+double solveNormal(Solver& s, Row& r) {
   const double vn = relativeVelocity(s, r, r.n);
   const double total = std::max(r.lambdaN - r.n.mass * (vn - r.target), 0.0);
   const double delta = total - r.lambdaN;
   r.lambdaN = total;
-  applyImpulse(s, r, r.n, delta, Y);
+  applyImpulse(s, r, r.n, delta);
   return std::abs(delta) / r.n.mass;
 }
 
@@ -398,25 +391,25 @@ void clampToDisc(double& l1, double& l2, double limit) {
   l1 *= scale, l2 *= scale;
 }
 
-double solveFriction(Solver& s, Row& r, std::vector<BodyState>& Y) {
+double solveFriction(Solver& s, Row& r) {
   const double v1 = relativeVelocity(s, r, r.t1), v2 = relativeVelocity(s, r, r.t2);
   double l1 = r.lambdaT1 - r.t1.mass * v1, l2 = r.lambdaT2 - r.t2.mass * v2;
   clampToDisc(l1, l2, frictionLimit(r));
   const double d1 = l1 - r.lambdaT1, d2 = l2 - r.lambdaT2;
   r.lambdaT1 = l1, r.lambdaT2 = l2;
-  applyImpulse(s, r, r.t1, d1, Y);
-  applyImpulse(s, r, r.t2, d2, Y);
+  applyImpulse(s, r, r.t1, d1);
+  applyImpulse(s, r, r.t2, d2);
   return std::max(std::abs(d1) / r.t1.mass, std::abs(d2) / r.t2.mass);
 }
 
 // One row: normal, then friction with the new normal impulse. A row whose bodies took
 // no impulse worth noting since it was found settled is settled still, and skipped: a
 // pile converges where it moves, not everywhere. Returns the velocity change it made.
-double solveRow(Solver& s, Row& r, std::vector<BodyState>& Y) {
+double solveRow(Solver& s, Row& r) {
   if (r.settled && r.versionA == s.bodies[r.a].version && r.versionB == s.bodies[r.b].version) return 0.0;
-  const double normal = solveNormal(s, r, Y);
+  const double normal = solveNormal(s, r);
   noteChange(s, r, normal);
-  const double friction = solveFriction(s, r, Y);
+  const double friction = solveFriction(s, r);
   noteChange(s, r, friction);
   const double change = std::max(normal, friction);
   r.settled = change <= kVelocityTolerance;
@@ -466,15 +459,15 @@ void assembleBlock(const Solver& s, const std::vector<std::pair<size_t, int>>& u
 
 // Friction outside its disc projected onto it and held there from now on. Returns
 // whether some row's was.
-bool projectFriction(Solver& s, const std::vector<size_t>& rows, std::vector<BodyState>& Y) {
+bool projectFriction(Solver& s, const std::vector<size_t>& rows) {
   bool changed = false;
   for (size_t i : rows) {
     Row& r = s.rows[i];
     const double t = length(r.lambdaT1, r.lambdaT2), limit = frictionLimit(r);
     if (t <= limit) continue;
     const double scale = limit / t;
-    applyImpulse(s, r, r.t1, r.lambdaT1 * (scale - 1.0), Y);
-    applyImpulse(s, r, r.t2, r.lambdaT2 * (scale - 1.0), Y);
+    applyImpulse(s, r, r.t1, r.lambdaT1 * (scale - 1.0));
+    applyImpulse(s, r, r.t2, r.lambdaT2 * (scale - 1.0));
     r.lambdaT1 *= scale, r.lambdaT2 *= scale;
     r.held = changed = true;
   }
@@ -491,7 +484,7 @@ bool projectFriction(Solver& s, const std::vector<size_t>& rows, std::vector<Bod
 // would be huge). A face's four points are redundant (one normal and one twist too
 // many), so the matrix is made regular by 1e-9 of its diagonal: near the least-norm
 // impulses, the load shared evenly.
-void solveBlock(Solver& s, const std::vector<size_t>& rows, std::vector<BodyState>& Y) {
+void solveBlock(Solver& s, const std::vector<size_t>& rows) {
   std::vector<size_t>& active = s.active;
   active.clear();
   for (size_t i : rows) {
@@ -528,10 +521,10 @@ void solveBlock(Solver& s, const std::vector<size_t>& rows, std::vector<BodyStat
       const int axis = unknowns[p].second;
       double& lambda = impulseNumber(r, axis);
       const double total = axis == 0 ? std::max(lambda + delta(p), 0.0) : lambda + delta(p);
-      applyImpulse(s, r, axisNumber(r, axis), total - lambda, Y);
+      applyImpulse(s, r, axisNumber(r, axis), total - lambda);
       lambda = total;
     }
-    const bool changed = projectFriction(s, active, Y);
+    const bool changed = projectFriction(s, active);
     const size_t before = active.size();
     active.erase(std::remove_if(active.begin(), active.end(), [&](size_t i) { return s.rows[i].lambdaN == 0.0; }),
                  active.end());
@@ -585,7 +578,7 @@ void findBlockIslands(Solver& s) {
 // Every island of findBlockIslands that the passes have not settled has its impulses
 // solved at once (solveBlock). Its bodies' versions change, so that its rows are
 // solved again.
-void solveBlockIslands(Solver& s, std::vector<BodyState>& Y) {
+void solveBlockIslands(Solver& s) {
   const std::vector<size_t>& order = s.islandRows;
   std::vector<size_t>& rows = s.block;
   for (const auto& [begin, end] : s.blocks) {
@@ -594,7 +587,7 @@ void solveBlockIslands(Solver& s, std::vector<BodyState>& Y) {
                     order.begin() + static_cast<std::ptrdiff_t>(end), [&](size_t i) { return !s.rows[i].settled; });
     if (!unsettled) continue;
     rows.assign(order.begin() + static_cast<std::ptrdiff_t>(begin), order.begin() + static_cast<std::ptrdiff_t>(end));
-    solveBlock(s, rows, Y);
+    solveBlock(s, rows);
     for (size_t i : rows) ++s.bodies[s.rows[i].a].version, ++s.bodies[s.rows[i].b].version;
   }
 }
@@ -605,18 +598,18 @@ void solveBlockIslands(Solver& s, std::vector<BodyState>& Y) {
 // the tolerance, or the cap. The passes sweep forwards and backwards in turn
 // (symmetric Gauss-Seidel): sweeps in one order only let a tall column of cubes rock,
 // as a sweep from the bottom up builds a lean that the next one does not take back.
-void solveVelocities(Solver& s, std::vector<BodyState>& Y, ContactSolveReport& report) {
+void solveVelocities(Solver& s, ContactSolveReport& report) {
   const size_t n = s.rows.size();
   for (report.iterations = 0; report.iterations < kMaxVelocityIterations;) {
     const bool backwards = report.iterations % 2 == 1;
     double change = 0.0;
-    for (size_t k = 0; k < n; ++k) change = std::max(change, solveRow(s, s.rows[backwards ? n - 1 - k : k], Y));
+    for (size_t k = 0; k < n; ++k) change = std::max(change, solveRow(s, s.rows[backwards ? n - 1 - k : k]));
     ++report.iterations;
     report.residual = change;
     if (change <= kVelocityTolerance) break;
     if (report.iterations < kBlockAfter) continue;
     if (report.iterations == kBlockAfter) findBlockIslands(s);
-    solveBlockIslands(s, Y);
+    solveBlockIslands(s);
   }
 }
 
@@ -654,31 +647,29 @@ double heldMass(const Solver& s, const Row& r, const Axis& x, int side) {
 }
 
 // The impulse lambda along x on one side only (+lambda d on b, -lambda d on a).
-void applyOneSided(Solver& s, const Row& r, const Axis& x, int side, double lambda, std::vector<BodyState>& Y) {
+void applyOneSided(Solver& s, const Row& r, const Axis& x, int side, double lambda) {
   if (lambda == 0.0) return;
   const int i = side > 0 ? r.b : r.a;
   SolverBody& M = s.bodies[i];
   M.v += side * lambda * M.invMass * x.d;
   M.w += side * lambda * (side > 0 ? x.spinB : x.spinA);
-  Y[i].P += side * lambda * x.d;
-  Y[i].L += side * lambda * (side > 0 ? x.rbXd : x.raXd);
 }
 
 // solveRow with the lower body held: the normal (>= 0 accumulated) and the friction in
 // its disc, with the upper body's masses alone. Returns the velocity change it made.
-double solveRowHeld(Solver& s, Row& r, int side, std::vector<BodyState>& Y) {
+double solveRowHeld(Solver& s, Row& r, int side) {
   const double mn = heldMass(s, r, r.n, side);
   const double ln = std::max(r.lambdaN - mn * (relativeVelocity(s, r, r.n) - r.target), 0.0);
   const double dn = ln - r.lambdaN;
   r.lambdaN = ln;
-  applyOneSided(s, r, r.n, side, dn, Y);
+  applyOneSided(s, r, r.n, side, dn);
   const double m1 = heldMass(s, r, r.t1, side), m2 = heldMass(s, r, r.t2, side);
   double l1 = r.lambdaT1 - m1 * relativeVelocity(s, r, r.t1), l2 = r.lambdaT2 - m2 * relativeVelocity(s, r, r.t2);
   clampToDisc(l1, l2, frictionLimit(r));
   const double d1 = l1 - r.lambdaT1, d2 = l2 - r.lambdaT2;
   r.lambdaT1 = l1, r.lambdaT2 = l2;
-  applyOneSided(s, r, r.t1, side, d1, Y);
-  applyOneSided(s, r, r.t2, side, d2, Y);
+  applyOneSided(s, r, r.t1, side, d1);
+  applyOneSided(s, r, r.t2, side, d2);
   return std::max({std::abs(dn) / mn, std::abs(d1) / m1, std::abs(d2) / m2});
 }
 
@@ -690,7 +681,7 @@ double solveRowHeld(Solver& s, Row& r, int side, std::vector<BodyState>& Y) {
 // one below before the next is taken. Rows on surfaces, between bodies of one level
 // (dominoes, a row of boxes) and in unsupported stacks are left as the passes made
 // them. The impulses accumulate into the rows' and so start the next step.
-void shockPass(Solver& s, std::vector<BodyState>& Y) {
+void shockPass(Solver& s) {
   findLevels(s);
   const int statics = s.staticSlot();
   s.climb.clear();
@@ -709,10 +700,26 @@ void shockPass(Solver& s, std::vector<BodyState>& Y) {
     const int side = upperSide(s, first);
     for (int pass = 0; pass < kShockPairPasses; ++pass) {
       double change = 0.0;
-      for (size_t k = begin; k < end; ++k) change = std::max(change, solveRowHeld(s, s.rows[s.climb[k]], side, Y));
+      for (size_t k = begin; k < end; ++k) change = std::max(change, solveRowHeld(s, s.rows[s.climb[k]], side));
       if (change <= kVelocityTolerance) break;
     }
     begin = end;
+  }
+}
+
+// ---- momenta --------------------------------------------------------------------------
+
+// The solve's velocity changes into Y's momenta, once: P += M dv, L += I dw, I = R Ibody
+// R^T at the pose the solve saw (correctPositions turns the bodies after). Kept apart
+// from each impulse, which then changes two vectors per body instead of four; a body
+// the impulses left alone keeps its momenta bitwise.
+void storeMomenta(const WorldModel& model, const Solver& s, std::vector<BodyState>& Y) {
+  for (size_t i = 0; i + 1 < s.bodies.size(); ++i) {
+    const SolverBody& b = s.bodies[i];
+    if (!s.involved[i] || (b.v == b.v0 && b.w == b.w0)) continue;
+    const Mat3 R = Y[i].q.normalized().toRotationMatrix();
+    Y[i].P += model.bodies[i].mass * (b.v - b.v0);
+    Y[i].L += R * model.bodies[i].Ibody * R.transpose() * (b.w - b.w0);
   }
 }
 
@@ -894,10 +901,11 @@ ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Cont
   prepareRows(model, contacts, step, Y, s);
   report.points = static_cast<int>(s.rows.size());
   markVelocities(s);
-  report.impactPasses = answerImpacts(s, step, Y, pushes);
-  warmStart(memory, s, Y);
-  solveVelocities(s, Y, report);
-  shockPass(s, Y);
+  report.impactPasses = answerImpacts(s, step, pushes);
+  warmStart(memory, s);
+  solveVelocities(s, report);
+  shockPass(s);
+  storeMomenta(model, s, Y);
   correctPositions(s, step, Y);
   store(s, std::max(kVelocityTolerance, 0.01 * step.restingSpeed), memory);
   pushSurfaces(s, pushes);

@@ -613,7 +613,7 @@ void solveVelocities(Solver& s, ContactSolveReport& report) {
   }
 }
 
-// ---- shock propagation -------------------------------------------------------------
+// ---- shock propagation -----------------------------------------------------------
 
 // Each body's level in the support graph: 1 on a surface, k + 1 on a body of level k
 // through a row that bears a load; a body supported by nothing (a stack in space) keeps
@@ -707,7 +707,7 @@ void shockPass(Solver& s) {
   }
 }
 
-// ---- momenta --------------------------------------------------------------------------
+// ---- momenta ---------------------------------------------------------------------
 
 // The solve's velocity changes into Y's momenta, once: P += M dv, L += I dw, I = R Ibody
 // R^T at the pose the solve saw (correctPositions turns the bodies after). Kept apart

@@ -34,7 +34,8 @@ def test_quick_stress_suite_has_every_case_and_method_and_nothing_fails(tmp_path
     assert table.exists(), proc.stdout[-3000:] + proc.stderr[-3000:]
     text = table.read_text()
     # no placeholder left unfilled in the prose (a plain string where an f-string was meant)
-    assert not re.findall(r"\{[A-Za-z_]\w*\}", text), re.findall(r"\{[A-Za-z_]\w*\}", text)
+    placeholders = re.findall(r"\{[A-Za-z_]\w*\}", text)
+    assert not placeholders, placeholders
     rows = re.findall(r"^\| `([^`]+)` \| (\S+) \| ([^|]+?) \|", text.split("## Every run", 1)[1], re.M)
     seen = {(c, m): outcome for c, m, outcome in rows}
     keys = [c.key for c in stress.cases(True, [(m, i + 1, "") for i, m in enumerate(methods)])]

@@ -14,6 +14,8 @@
 //     the bodies asleep at 3 s (sleep.h; the scene's default rules).
 //   BM_PileAwake/<N>: BM_PileManifold with sleep off (solver.sleep false): the solver
 //     alone, every body awake to the end.
+//   BM_PileSoft/<N>: BM_PileManifold answered by the experimental soft sub-steps
+//     (pile_soft_<N>.json, solver.contacts "soft"): a fixed number of passes per solve.
 //   BM_PileWide/<N>: BM_PileManifold on pile_wide_<N>.json, N cubes in columns of the
 //     pile of 100's height: growth from 100 cubes at equal height.
 #include <benchmark/benchmark.h>
@@ -297,6 +299,11 @@ int main(int argc, char** argv) {
                                    pileManifold, "pile_manifold_" + std::to_string(n) + ".json", sleep)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
+  for (int n : {10, 100, 1000})
+    benchmark::RegisterBenchmark(("BM_PileSoft/" + std::to_string(n)).c_str(), pileManifold,
+                                 "pile_soft_" + std::to_string(n) + ".json", true)
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1);
   // the wide pile's count: bench.py's WIDE_PILE
   benchmark::RegisterBenchmark("BM_PileWide/1024", pileManifold, std::string("pile_wide_1024.json"), true)
       ->Unit(benchmark::kMillisecond)

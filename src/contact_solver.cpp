@@ -8,98 +8,20 @@
 
 #include <Eigen/Dense>
 
+#include "contact_rows.h"
 #include "contact_rules.h"
 #include "islands.h"
+#include "soft_contacts.h"
 
 namespace rigid {
 
 using namespace contact_solver;
 
-namespace {
-
-// Points closer than this count as touching (a located impact leaves a gap of about
-// 1e-15 of the step's travel); farther ones are speculative.
-constexpr double kTouching = 1e-6;  // m
-constexpr int kMaxImpactPasses = 500;
-
-// A body as the solver sees it; the last slot of the solver's bodies stands for every
-// surface: no inverse mass, no inverse inertia, never moves.
-struct SolverBody {
-  double invMass = 0.0;
-  Mat3 Iinv = Mat3::Zero();                   // 1/(kg m^2), world frame, at the end-of-step pose
-  Vec3 v = Vec3::Zero(), w = Vec3::Zero();    // velocity and angular velocity
-  Vec3 vp = Vec3::Zero(), wp = Vec3::Zero();  // pseudo-velocities of the position correction
-  Vec3 v0 = Vec3::Zero(), w0 = Vec3::Zero();  // velocities before the impacts and the solve's impulses
-  unsigned version = 0;  // counts the impulses that changed its velocities by more than kNegligible
-};
-
-// A velocity change below this (m/s) at a point leaves the bodies' versions as they
-// were: the rows found settled stay settled (solveVelocities).
-constexpr double kNegligible = 0.1 * kVelocityTolerance;
-
-// One direction d of a contact point: an impulse lambda acts +lambda d on b and
-// -lambda d on a.
-struct Axis {
-  Vec3 d = Vec3::Zero();
-  Vec3 raXd = Vec3::Zero(), rbXd = Vec3::Zero();    // r x d of each side
-  Vec3 spinA = Vec3::Zero(), spinB = Vec3::Zero();  // I^-1 (r x d): spin per unit impulse
-  double mass = 0.0;  // 1 / (1/Ma + 1/Mb + (r_a x d).Ia^-1 (r_a x d) + (r_b x d).Ib^-1 (r_b x d))
-};
-
-struct Coefficients {
-  double xi = 0.0, mus = 0.0, muk = 0.0;
-};
-
-// One contact point: its normal and two tangents, the impulses accumulated along them.
-struct Row {
-  int a = 0, b = 0;  // solver bodies
-  Vec3 ra = Vec3::Zero(), rb = Vec3::Zero();
-  Axis n, t1, t2;
-  Coefficients k;
-  double depth = 0.0;
-  double target = 0.0;  // m/s, the normal velocity the solve aims at (< 0: a gap may close)
-  double lambdaN = 0.0, lambdaT1 = 0.0, lambdaT2 = 0.0, lambdaP = 0.0;
-  double pushOut = 0.0;                 // m/s, the position correction's target normal pseudo-velocity
-  unsigned versionA = 0, versionB = 0;  // the bodies' versions when the row was found settled
-  bool settled = false;
-  bool held = false;           // solveBlock: its friction is not an unknown of the block
-  bool sliding = false;        // friction limited by mu_k (else mu_s), for the whole solve
-  bool remembered = false;     // matched to a point of last step
-  Vec3 localA = Vec3::Zero();  // m, the point in body a's frame (matches last step's points)
-  const Contact* contact = nullptr;
-};
-
-}  // namespace
-
-// The solver's work buffers, kept between solves (CollisionCache) so that a step
-// allocates nothing once the contacts have been seen.
-struct ContactScratch {
-  std::vector<SolverBody> bodies;  // one per body, then the static slot
-  std::vector<char> involved;      // bodies that some row touches
-  std::vector<Row> rows;
-  std::vector<Row> impacts;                       // answerImpacts' merged pairs
-  std::vector<size_t> deep;                       // rows overlapping by more than the slop
-  std::vector<double> moveScale;                  // limitMoves: each body's share of the solve's move
-  std::vector<char> used;                         // warmStart: memory points already matched
-  std::vector<int> island;                        // findBlockIslands: each body's island (union-find)
-  std::vector<size_t> islandRows;                 // findBlockIslands: rows grouped by island
-  std::vector<std::pair<size_t, size_t>> blocks;  // findBlockIslands: islands for solveBlock
-  std::vector<size_t> block;                      // solveBlockIslands: one island's rows
-  std::vector<size_t> active;                     // solveBlock: the rows whose impulses are solved
-  std::vector<std::pair<size_t, int>> unknowns;   // solveBlock: (row, axis) of each unknown
-  Eigen::MatrixXd K, regular;                     // solveBlock: its matrix, and that matrix made regular
-  Eigen::VectorXd residual, delta;                // solveBlock: velocity errors, impulse changes
-  Eigen::LDLT<Eigen::MatrixXd> factors;           // solveBlock: of `regular`
-  std::vector<int> level;                         // shockPass: each body's height in the support graph
-  std::vector<size_t> climb;                      // shockPass: the rows between levels, lowest first
-  int staticSlot() const { return static_cast<int>(bodies.size()) - 1; }
-};
-
 void ContactScratchDeleter::operator()(ContactScratch* s) const { delete s; }
 
 namespace {
 
-using Solver = ContactScratch;
+using namespace contact_rows;
 
 // The end of the rows of the pair that row i belongs to (rows come grouped by pair).
 size_t pairEnd(const Solver& s, size_t i) {
@@ -120,10 +42,6 @@ Coefficients coefficientsOf(const WorldModel& model, const Contact& c) {
           combineCoefficients(a.kineticFriction, muk)};
 }
 
-// |(x, y)|: std::hypot guards against overflow at a cost that showed as a quarter of a
-// pile's solve; impulses are nowhere near overflowing.
-double length(double x, double y) { return std::sqrt(x * x + y * y); }
-
 Vec3 anyPerpendicular(const Vec3& u) {
   const Vec3 other = std::abs(u.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
   return u.cross(other).normalized();
@@ -138,26 +56,6 @@ Axis axisOf(const SolverBody& A, const SolverBody& B, const Vec3& ra, const Vec3
   x.spinB = B.Iinv * x.rbXd;
   x.mass = 1.0 / (A.invMass + B.invMass + x.raXd.dot(x.spinA) + x.rbXd.dot(x.spinB));
   return x;
-}
-
-// Velocity of b relative to a at the point, along the axis.
-double relativeVelocity(const Solver& s, const Row& r, const Axis& x) {
-  const SolverBody& A = s.bodies[r.a];
-  const SolverBody& B = s.bodies[r.b];
-  return x.d.dot(B.v - A.v) + x.rbXd.dot(B.w) - x.raXd.dot(A.w);
-}
-
-// The impulse lambda along the axis, on the bodies' velocities (storeMomenta hands the
-// change to Y's momenta once the solve is done).
-void applyImpulse(Solver& s, const Row& r, const Axis& x, double lambda) {
-  if (lambda == 0.0) return;
-  SolverBody& A = s.bodies[r.a];
-  SolverBody& B = s.bodies[r.b];
-  A.v -= lambda * A.invMass * x.d;
-  A.w -= lambda * x.spinA;
-  if (r.b == s.staticSlot()) return;
-  B.v += lambda * B.invMass * x.d;
-  B.w += lambda * x.spinB;
 }
 
 // ---- prepare ---------------------------------------------------------------------
@@ -265,10 +163,15 @@ void impact(Solver& s, const Row& r, double vrel, std::vector<SurfacePush>& push
 // Impacts as the seed answers them, before the solve and outside its accumulated
 // impulses (which would take a bounce back): passes over the pairs while one of them
 // approaches faster than a resting body can, so that a chain of touching bodies passes
-// an impact on (Newton's cradle). Returns the passes taken.
+// an impact on (Newton's cradle). Returns the passes taken. The soft sub-steps answer
+// only the bouncing pairs (xi > 0) here: an inelastic landing is stopped within their
+// sub-steps, where the seed's impulse at the step's end left the body sunk by the
+// step's travel (2 mm in a falling pile of 100, 0.4 mm without).
 int answerImpacts(Solver& s, const ContactStep& step, std::vector<SurfacePush>& pushes) {
+  const bool inelastic = step.model != ContactModel::Soft;
+  auto striking = [&](const Row& r, double vrel) { return vrel < -step.restingSpeed && (inelastic || r.k.xi > 0.0); };
   const bool any = std::any_of(s.rows.begin(), s.rows.end(), [&](const Row& r) {
-    return r.depth >= -kTouching && relativeVelocity(s, r, r.n) < -step.restingSpeed;
+    return r.depth >= -kTouching && striking(r, relativeVelocity(s, r, r.n));
   });
   if (!any) return 0;
   impactRows(s, s.impacts);
@@ -278,7 +181,7 @@ int answerImpacts(Solver& s, const ContactStep& step, std::vector<SurfacePush>& 
     struck = false;
     for (const Row& r : rows) {
       const double vrel = relativeVelocity(s, r, r.n);
-      if (vrel >= -step.restingSpeed) continue;
+      if (!striking(r, vrel)) continue;
       impact(s, r, vrel, pushes);
       struck = true;
     }
@@ -293,18 +196,6 @@ int answerImpacts(Solver& s, const ContactStep& step, std::vector<SurfacePush>& 
 // moves each body by what they change, within limitMoves).
 void markVelocities(Solver& s) {
   for (SolverBody& b : s.bodies) b.v0 = b.v, b.w0 = b.w;
-}
-
-// The impulses (lambda_n, lambda_t1, lambda_t2) of one row at once.
-void applyRowImpulse(Solver& s, const Row& r, double ln, double l1, double l2) {
-  const Vec3 J = ln * r.n.d + l1 * r.t1.d + l2 * r.t2.d;
-  SolverBody& A = s.bodies[r.a];
-  A.v -= A.invMass * J;
-  A.w -= ln * r.n.spinA + l1 * r.t1.spinA + l2 * r.t2.spinA;
-  if (r.b == s.staticSlot()) return;
-  SolverBody& B = s.bodies[r.b];
-  B.v += B.invMass * J;
-  B.w += ln * r.n.spinB + l1 * r.t1.spinB + l2 * r.t2.spinB;
 }
 
 // One row takes the impulses of memory[m], clamped to its friction disc.
@@ -374,32 +265,6 @@ void noteChange(Solver& s, const Row& r, double change) {
   if (change <= kNegligible) return;
   ++s.bodies[r.a].version;
   ++s.bodies[r.b].version;
-}
-
-// Friction: the impulse that stops the slip, projected onto the disc |lambda_t| <=
-// mu lambda_n, mu = mu_s for a sticking point and mu_k for a sliding one. (Switching
-// between the two within the passes would make the projection jump and never settle:
-// a point's state changes between steps, in store().) Returns the velocity change it
-// made at the point (m/s).
-double frictionLimit(const Row& r) { return (r.sliding ? r.k.muk : r.k.mus) * r.lambdaN; }
-
-// (l1, l2) scaled onto the disc |l| <= limit when it is outside.
-void clampToDisc(double& l1, double& l2, double limit) {
-  const double magnitude = length(l1, l2);
-  if (!(magnitude > limit)) return;
-  const double scale = magnitude > 0.0 ? limit / magnitude : 0.0;
-  l1 *= scale, l2 *= scale;
-}
-
-double solveFriction(Solver& s, Row& r) {
-  const double v1 = relativeVelocity(s, r, r.t1), v2 = relativeVelocity(s, r, r.t2);
-  double l1 = r.lambdaT1 - r.t1.mass * v1, l2 = r.lambdaT2 - r.t2.mass * v2;
-  clampToDisc(l1, l2, frictionLimit(r));
-  const double d1 = l1 - r.lambdaT1, d2 = l2 - r.lambdaT2;
-  r.lambdaT1 = l1, r.lambdaT2 = l2;
-  applyImpulse(s, r, r.t1, d1);
-  applyImpulse(s, r, r.t2, d2);
-  return std::max(std::abs(d1) / r.t1.mass, std::abs(d2) / r.t2.mass);
 }
 
 // One row: normal, then friction with the new normal impulse. A row whose bodies took
@@ -902,11 +767,19 @@ ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Cont
   report.points = static_cast<int>(s.rows.size());
   markVelocities(s);
   report.impactPasses = answerImpacts(s, step, pushes);
+  const bool soft = step.model == ContactModel::Soft;
+  if (soft) beginSubsteps(model, step, s);
   warmStart(memory, s);
-  solveVelocities(s, report);
-  shockPass(s);
-  storeMomenta(model, s, Y);
-  correctPositions(s, step, Y);
+  if (soft) {
+    solveSubsteps(step, s, report);
+    storeMomenta(model, s, Y);
+    moveBySubsteps(s, Y);
+  } else {
+    solveVelocities(s, report);
+    shockPass(s);
+    storeMomenta(model, s, Y);
+    correctPositions(s, step, Y);
+  }
   store(s, std::max(kVelocityTolerance, 0.01 * step.restingSpeed), memory);
   pushSurfaces(s, pushes);
   return report;

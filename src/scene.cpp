@@ -374,11 +374,12 @@ Scene parseScene(const std::string& text) {
     m.maxStep = positive(s, "step", &step);
     m.tolerance = s.number("tolerance", defaults::kTolerance);
     if (m.tolerance < 0.0) fail("solver.tolerance", "must be >= 0, got " + num(m.tolerance));
-    // One contact solver; the field stays for scenes that name it.
     const std::string contacts = s.string("contacts", "manifold");
     if (contacts == "centroid")
-      fail("solver.contacts", "\"centroid\" (the first contact model) was removed; must be \"manifold\"");
-    if (contacts != "manifold") fail("solver.contacts", "must be \"manifold\", got \"" + contacts + "\"");
+      fail("solver.contacts", "\"centroid\" (the first contact model) was removed; must be \"manifold\" or \"soft\"");
+    if (contacts != "manifold" && contacts != "soft")
+      fail("solver.contacts", "must be \"manifold\" or \"soft\", got \"" + contacts + "\"");
+    m.contacts = contacts == "soft" ? ContactModel::Soft : ContactModel::Manifold;
     m.energyGainLimit = s.number("energyGainLimit", defaults::kEnergyGainLimit);
     if (m.energyGainLimit < 0.0)
       fail("solver.energyGainLimit", "must be >= 0 (0: unchecked), got " + num(m.energyGainLimit));

@@ -245,7 +245,9 @@ void respondToContacts(StepContext& s, std::vector<BodyState>& after) {
     CollisionCache* c = s.data.collision.get();
     if (!c) return;
     Stopwatch response(slotOf(s.data, &StepProfile::response));
-    const ContactStep step{s.h, restingNormalSpeed(s.model.gravity, s.h), constantForceDisplacement(s.model.method)};
+    ContactStep step{s.h, restingNormalSpeed(s.model.gravity, s.h), constantForceDisplacement(s.model.method)};
+    step.model = s.model.contacts;
+    step.start = &s.data.Y;  // not yet committed: the state the step started from
     setAsideSleeping(sleep, s.data.contactMemory, *c);
     c->Pbefore.resize(after.size());
     c->Lbefore.resize(after.size());

@@ -17,6 +17,10 @@ namespace rigid {
 
 struct CollisionCache;  // collision_cache.h: the FCL detector and its contacts
 
+// The contact solver (solver.contacts; contact_solver.h): Gauss-Seidel passes to a
+// tolerance (the default), or sub-stepped soft contacts with a fixed cost per step.
+enum class ContactModel { Manifold, Soft };
+
 // Constants of one scene. Parameters of the FMU (mass, gravity, method, ...) change
 // them only between runs or, for tunable ones, between communication steps.
 struct WorldModel {
@@ -29,6 +33,7 @@ struct WorldModel {
   // before a step is refused (0: unchecked); explicit Euler gains ~(h |omega|)^2 a step.
   double energyGainLimit = 1e-3;
   SleepRules sleep;  // when islands at rest sleep (sleep.h)
+  ContactModel contacts = ContactModel::Manifold;
   std::vector<BodyConstants> bodies;
   std::vector<Surface> surfaces;
   std::vector<Medium> media;

@@ -25,3 +25,9 @@ def test_wide_pile_is_the_pile_of_100_on_a_wider_grid():
 def test_columns_of_four_lay_out_the_pile_of_100_as_before():
     assert bench.pile_layout(100, layers=4) == bench.pile_layout(100)
     assert len({round(p[2], 9) for p, _ in bench.pile_layout(1000)}) == 10  # the tall pile: columns of 10
+
+
+def test_soft_pile_differs_from_the_manifold_pile_in_its_solver_only():
+    soft, manifold = bench.pile_soft_scene(100), bench.pile_manifold_scene(100)
+    assert soft["solver"] == dict(manifold["solver"], contacts="soft")
+    assert soft["bodies"] == manifold["bodies"] and soft["surfaces"] == manifold["surfaces"]

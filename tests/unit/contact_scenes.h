@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -104,6 +105,34 @@ struct Sim {
   rigid::WorldModel model;
   rigid::WorldData data;
 };
+
+// Mechanical energy through a run of `seconds`: at its start and end, and the largest
+// rise over one step (J).
+struct EnergyRun {
+  double start = 0.0, end = 0.0, worstRise = -1e300;
+};
+inline EnergyRun runWatchingEnergy(Sim& sim, double seconds) {
+  EnergyRun e;
+  e.start = e.end = sim.energy();
+  sim.run(seconds, [&] {
+    const double now = sim.energy();
+    e.worstRise = std::max(e.worstRise, now - e.end);
+    e.end = now;
+  });
+  std::printf("largest rise of one step %.3g J; %.3g J of %.3g J left\n", e.worstRise, e.end, e.start);
+  return e;
+}
+
+// Runs `settle` s, then `seconds` more: the largest displacement of any body over the
+// second run (m).
+inline double driftAfterSettling(Sim& sim, double settle, double seconds) {
+  sim.run(settle);
+  const std::vector<rigid::BodyState> settled = sim.data.Y;
+  sim.run(seconds);
+  double drift = 0.0;
+  for (size_t i = 0; i < settled.size(); ++i) drift = std::max(drift, (sim.data.Y[i].X - settled[i].X).norm());
+  return drift;
+}
 
 constexpr double kEdge = 0.1;  // m, the cubes of stacks and piles
 

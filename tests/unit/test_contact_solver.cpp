@@ -352,15 +352,10 @@ TEST(ContactSolver, SlidingDownAnInclineWhenStaticFrictionCannotHoldTheRoll) {
 // at the end, no overlap deeper than 1 mm.
 void expectStands(const json& bodies) {
   Sim sim(sceneOf(bodies, {floorSurface()}));
-  sim.run(0.5);
-  const std::vector<rigid::BodyState> settled = sim.data.Y;
-  sim.run(9.5);
-  double drift = 0.0;
-  for (size_t i = 0; i < settled.size(); ++i) drift = std::max(drift, (sim.data.Y[i].X - settled[i].X).norm());
-  EXPECT_LT(drift, 1e-3);
+  EXPECT_LT(driftAfterSettling(sim, 0.5, 9.5), 1e-3);
   EXPECT_LT(sim.fastest(), 1e-3);
   EXPECT_LT(sim.deepestOverlap(), 1e-3);
-  for (size_t i = 0; i < settled.size(); ++i)  // and where it was set down, within the seats' slop
+  for (size_t i = 0; i < bodies.size(); ++i)  // and where it was set down, within the seats' slop
     EXPECT_LT(
         (sim.data.Y[i].X - Vec3(bodies[i]["position"][0], bodies[i]["position"][1], bodies[i]["position"][2])).norm(),
         3e-3)
@@ -451,16 +446,9 @@ TEST(ContactSolver, ColumnOfTenCubesDroppedComesToRest) {
 // overlaps against gravity: 2e-6 J measured at most), and the run ends below its start.
 TEST(ContactSolver, MechanicalEnergyNeverRisesThroughContact) {
   Sim sim(sceneOf(pile(27, 3), {floorSurface()}, 2e-3));
-  const double start = sim.energy();
-  double last = start, worst = -1e300;
-  sim.run(1.5, [&] {
-    const double now = sim.energy();
-    worst = std::max(worst, now - last);
-    last = now;
-  });
-  EXPECT_LT(worst, 1e-5);
-  EXPECT_LT(last, start);
-  std::printf("largest rise of one step %.3g J; %.3g J of %.3g J left\n", worst, last, start);
+  const EnergyRun e = runWatchingEnergy(sim, 1.5);
+  EXPECT_LT(e.worstRise, 1e-5);
+  EXPECT_LT(e.end, e.start);
 }
 
 // ---- what the first model did and this one keeps ----------------------------------------

@@ -129,12 +129,17 @@ TEST(Scene, UnknownSolverField) {
                      "sleepSpeed, sleepTime)");
 }
 
-TEST(Scene, ContactSolverIsTheOnlyOne) {
-  EXPECT_NO_THROW(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "manifold"}, )")));
+TEST(Scene, ContactSolverIsManifoldOrSoft) {
+  EXPECT_EQ(rigid::parseScene(sceneWith("", "")).model.contacts, rigid::ContactModel::Manifold);
+  EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "manifold"}, )")).model.contacts,
+            rigid::ContactModel::Manifold);
+  EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "soft"}, )")).model.contacts,
+            rigid::ContactModel::Soft);
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "centroid"}, )"),
-                     "solver.contacts: \"centroid\" (the first contact model) was removed; must be \"manifold\"");
+                     "solver.contacts: \"centroid\" (the first contact model) was removed; must be \"manifold\" or "
+                     "\"soft\"");
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "penalty"}, )"),
-                     "solver.contacts: must be \"manifold\", got \"penalty\"");
+                     "solver.contacts: must be \"manifold\" or \"soft\", got \"penalty\"");
 }
 
 TEST(Scene, SleepRules) {

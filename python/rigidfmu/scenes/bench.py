@@ -5,10 +5,12 @@ piles are written twice, the second naming the contact solver ("manifold", the
 default), for the benchmarks that time them over 1 s (BM_Pile) and 3 s
 (BM_PileManifold). A third, wide pile (BM_PileWide) has as many cubes as the largest
 but in columns as short as the pile of 100's, so that the growth from 100 cubes can be
-read at equal height as well as at the growing height of the cube-root piles.
+read at equal height as well as at the growing height of the cube-root piles. The piles
+are written a third time naming the experimental soft sub-steps ("soft", BM_PileSoft).
 
   python -m rigidfmu.scenes.bench DIR    writes DIR/free_<N>.json, DIR/pile_<N>.json,
-                                         DIR/pile_manifold_<N>.json and
+                                         DIR/pile_manifold_<N>.json,
+                                         DIR/pile_soft_<N>.json and
                                          DIR/pile_wide_<N>.json
 """
 import json
@@ -85,6 +87,15 @@ def pile_manifold_scene(n):
     return scene
 
 
+def pile_soft_scene(n):
+    """pile_scene(n) answered by the experimental soft sub-steps (solver.contacts "soft"):
+    only the solver differs from pile_manifold_scene(n)."""
+    scene = pile_scene(n)
+    scene["name"] = f"PileSoft{n}"
+    scene["solver"] = dict(scene["solver"], contacts="soft")
+    return scene
+
+
 def pile_wide_scene(n):
     """pile_manifold_scene(n) laid out in columns of WIDE_LAYERS cubes (the pile of
     100's height): the same cubes, floor, step and solver, only the layout differs."""
@@ -102,6 +113,7 @@ def write(directory):
     for n in PILE_COUNTS:
         (d / f"pile_{n}.json").write_text(json.dumps(pile_scene(n)))
         (d / f"pile_manifold_{n}.json").write_text(json.dumps(pile_manifold_scene(n)))
+        (d / f"pile_soft_{n}.json").write_text(json.dumps(pile_soft_scene(n)))
     (d / f"pile_wide_{WIDE_PILE}.json").write_text(json.dumps(pile_wide_scene(WIDE_PILE)))
 
 

@@ -1,0 +1,181 @@
+// The contact solver's rows and bodies, and its work buffers (ContactScratch): what
+// contact_solver.cpp (the solve) and soft_contacts.cpp (its sub-stepped soft stage)
+// share. Internal to the two; nothing outside them sees these types.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "collision_detection.h"
+#include "contact_solver.h"
+
+namespace rigid {
+namespace contact_rows {
+
+using namespace contact_solver;
+
+// Points closer than this count as touching (a located impact leaves a gap of about
+// 1e-15 of the step's travel); farther ones are speculative.
+constexpr double kTouching = 1e-6;  // m
+constexpr int kMaxImpactPasses = 500;
+
+// A body as the solver sees it; the last slot of the solver's bodies stands for every
+// surface: no inverse mass, no inverse inertia, never moves.
+struct SolverBody {
+  double invMass = 0.0;
+  Mat3 Iinv = Mat3::Zero();                   // 1/(kg m^2), world frame, at the end-of-step pose
+  Vec3 v = Vec3::Zero(), w = Vec3::Zero();    // velocity and angular velocity
+  Vec3 vp = Vec3::Zero(), wp = Vec3::Zero();  // pseudo-velocities of the position correction
+  Vec3 v0 = Vec3::Zero(), w0 = Vec3::Zero();  // velocities before the impacts and the solve's impulses
+  unsigned version = 0;  // counts the impulses that changed its velocities by more than kNegligible
+};
+
+// A velocity change below this (m/s) at a point leaves the bodies' versions as they
+// were: the rows found settled stay settled (solveVelocities).
+constexpr double kNegligible = 0.1 * kVelocityTolerance;
+
+// One direction d of a contact point: an impulse lambda acts +lambda d on b and
+// -lambda d on a.
+struct Axis {
+  Vec3 d = Vec3::Zero();
+  Vec3 raXd = Vec3::Zero(), rbXd = Vec3::Zero();    // r x d of each side
+  Vec3 spinA = Vec3::Zero(), spinB = Vec3::Zero();  // I^-1 (r x d): spin per unit impulse
+  double mass = 0.0;  // 1 / (1/Ma + 1/Mb + (r_a x d).Ia^-1 (r_a x d) + (r_b x d).Ib^-1 (r_b x d))
+};
+
+struct Coefficients {
+  double xi = 0.0, mus = 0.0, muk = 0.0;
+};
+
+// One contact point: its normal and two tangents, the impulses accumulated along them.
+struct Row {
+  int a = 0, b = 0;  // solver bodies
+  Vec3 ra = Vec3::Zero(), rb = Vec3::Zero();
+  Axis n, t1, t2;
+  Coefficients k;
+  double depth = 0.0;
+  double target = 0.0;  // m/s, the normal velocity the solve aims at (< 0: a gap may close)
+  double lambdaN = 0.0, lambdaT1 = 0.0, lambdaT2 = 0.0, lambdaP = 0.0;
+  double pushOut = 0.0;                 // m/s, the position correction's target normal pseudo-velocity
+  unsigned versionA = 0, versionB = 0;  // the bodies' versions when the row was found settled
+  bool settled = false;
+  bool held = false;           // solveBlock: its friction is not an unknown of the block
+  bool sliding = false;        // friction limited by mu_k (else mu_s), for the whole solve
+  bool remembered = false;     // matched to a point of last step
+  Vec3 localA = Vec3::Zero();  // m, the point in body a's frame (matches last step's points)
+  const Contact* contact = nullptr;
+  double sumN = 0.0, sumT1 = 0.0, sumT2 = 0.0;  // soft sub-steps: the impulses summed over them
+};
+
+// The soft stage's view of one body (soft_contacts.cpp): the free motion the integrator
+// gave it over the step, and what the contact impulses have moved it beyond that.
+struct SubstepBody {
+  Vec3 v = Vec3::Zero(), w = Vec3::Zero();        // velocities of the free motion at the step's start
+  Vec3 dv = Vec3::Zero(), dw = Vec3::Zero();      // the applied forces' velocity change per sub-step
+  Vec3 kick = Vec3::Zero(), spin = Vec3::Zero();  // the impacts' velocity change
+  double kickMoves = 1.0;                         // the share of h times the kick that moves the body (limitKicks)
+  Vec3 move = Vec3::Zero(), turn = Vec3::Zero();  // m, rad: displacement by the contact impulses so far
+};
+
+}  // namespace contact_rows
+
+// The solver's work buffers, kept between solves (CollisionCache) so that a step
+// allocates nothing once the contacts have been seen.
+struct ContactScratch {
+  using SolverBody = contact_rows::SolverBody;
+  using Row = contact_rows::Row;
+  using SubstepBody = contact_rows::SubstepBody;
+  std::vector<SolverBody> bodies;  // one per body, then the static slot
+  std::vector<char> involved;      // bodies that some row touches
+  std::vector<Row> rows;
+  std::vector<Row> impacts;                       // answerImpacts' merged pairs
+  std::vector<size_t> deep;                       // rows overlapping by more than the slop
+  std::vector<double> moveScale;                  // limitMoves: each body's share of the solve's move
+  std::vector<char> used;                         // warmStart: memory points already matched
+  std::vector<int> island;                        // findBlockIslands: each body's island (union-find)
+  std::vector<size_t> islandRows;                 // findBlockIslands: rows grouped by island
+  std::vector<std::pair<size_t, size_t>> blocks;  // findBlockIslands: islands for solveBlock
+  std::vector<size_t> block;                      // solveBlockIslands: one island's rows
+  std::vector<size_t> active;                     // solveBlock: the rows whose impulses are solved
+  std::vector<std::pair<size_t, int>> unknowns;   // solveBlock: (row, axis) of each unknown
+  Eigen::MatrixXd K, regular;                     // solveBlock: its matrix, and that matrix made regular
+  Eigen::VectorXd residual, delta;                // solveBlock: velocity errors, impulse changes
+  Eigen::LDLT<Eigen::MatrixXd> factors;           // solveBlock: of `regular`
+  std::vector<int> level;                         // shockPass: each body's height in the support graph
+  std::vector<size_t> climb;                      // shockPass: the rows between levels, lowest first
+  std::vector<SubstepBody> substep;               // soft_contacts: each body's free motion and move
+  int staticSlot() const { return static_cast<int>(bodies.size()) - 1; }
+};
+
+namespace contact_rows {
+
+using Solver = ContactScratch;
+
+// |(x, y)|: std::hypot guards against overflow at a cost that showed as a quarter of a
+// pile's solve; impulses are nowhere near overflowing.
+inline double length(double x, double y) { return std::sqrt(x * x + y * y); }
+
+// Velocity of b relative to a at the point, along the axis.
+inline double relativeVelocity(const Solver& s, const Row& r, const Axis& x) {
+  const SolverBody& A = s.bodies[r.a];
+  const SolverBody& B = s.bodies[r.b];
+  return x.d.dot(B.v - A.v) + x.rbXd.dot(B.w) - x.raXd.dot(A.w);
+}
+
+// The impulse lambda along the axis, on the bodies' velocities (storeMomenta hands the
+// change to Y's momenta once the solve is done).
+inline void applyImpulse(Solver& s, const Row& r, const Axis& x, double lambda) {
+  if (lambda == 0.0) return;
+  SolverBody& A = s.bodies[r.a];
+  SolverBody& B = s.bodies[r.b];
+  A.v -= lambda * A.invMass * x.d;
+  A.w -= lambda * x.spinA;
+  if (r.b == s.staticSlot()) return;
+  B.v += lambda * B.invMass * x.d;
+  B.w += lambda * x.spinB;
+}
+
+// The impulses (lambda_n, lambda_t1, lambda_t2) of one row at once.
+inline void applyRowImpulse(Solver& s, const Row& r, double ln, double l1, double l2) {
+  const Vec3 J = ln * r.n.d + l1 * r.t1.d + l2 * r.t2.d;
+  SolverBody& A = s.bodies[r.a];
+  A.v -= A.invMass * J;
+  A.w -= ln * r.n.spinA + l1 * r.t1.spinA + l2 * r.t2.spinA;
+  if (r.b == s.staticSlot()) return;
+  SolverBody& B = s.bodies[r.b];
+  B.v += B.invMass * J;
+  B.w += ln * r.n.spinB + l1 * r.t1.spinB + l2 * r.t2.spinB;
+}
+
+// (l1, l2) scaled onto the disc |l| <= limit when it is outside.
+inline void clampToDisc(double& l1, double& l2, double limit) {
+  const double magnitude = length(l1, l2);
+  if (!(magnitude > limit)) return;
+  const double scale = magnitude > 0.0 ? limit / magnitude : 0.0;
+  l1 *= scale, l2 *= scale;
+}
+
+// The friction disc's radius: mu lambda_n, mu = mu_s for a sticking point and mu_k for
+// a sliding one.
+inline double frictionLimit(const Row& r) { return (r.sliding ? r.k.muk : r.k.mus) * r.lambdaN; }
+
+// Friction: the impulse that stops the slip, projected onto the disc |lambda_t| <=
+// mu lambda_n, mu = mu_s for a sticking point and mu_k for a sliding one. (Switching
+// between the two within the passes would make the projection jump and never settle:
+// a point's state changes between steps, in store().) Returns the velocity change it
+// made at the point (m/s).
+inline double solveFriction(Solver& s, Row& r) {
+  const double v1 = relativeVelocity(s, r, r.t1), v2 = relativeVelocity(s, r, r.t2);
+  double l1 = r.lambdaT1 - r.t1.mass * v1, l2 = r.lambdaT2 - r.t2.mass * v2;
+  clampToDisc(l1, l2, frictionLimit(r));
+  const double d1 = l1 - r.lambdaT1, d2 = l2 - r.lambdaT2;
+  r.lambdaT1 = l1, r.lambdaT2 = l2;
+  applyImpulse(s, r, r.t1, d1);
+  applyImpulse(s, r, r.t2, d2);
+  return std::max(std::abs(d1) / r.t1.mass, std::abs(d2) / r.t2.mass);
+}
+
+}  // namespace contact_rows
+}  // namespace rigid

@@ -1,0 +1,185 @@
+#include "soft_contacts.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rigid {
+
+using namespace contact_rows;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A soft constraint's coefficients for a sub-step h (Catto, "Solver2D"): the bias
+// rate (1/s) that turns an overlap into a push-out speed, and the shares of the rigid
+// impulse and of the accumulated impulse that make the constraint a spring of natural
+// frequency f and damping ratio zeta rather than a rigid one.
+struct Softness {
+  double biasRate = 0.0, massScale = 1.0, impulseScale = 0.0;
+};
+
+Softness softness(double frequency, double zeta, double h) {
+  const double omega = 2.0 * kPi * frequency;
+  const double a1 = 2.0 * zeta + h * omega, a2 = h * omega * a1, a3 = 1.0 / (1.0 + a2);
+  return {omega / a1, a2 * a3, a3};
+}
+
+// The normal component at row r of what bodies a and b moved by (m along the normal).
+double normalMove(const Row& r, const Vec3& moveA, const Vec3& turnA, const Vec3& moveB, const Vec3& turnB) {
+  return r.n.d.dot(moveB - moveA) + r.n.rbXd.dot(turnB) - r.n.raXd.dot(turnA);
+}
+
+// The row's separation (m, < 0: overlap) after `done` of the kSoftSubsteps sub-steps:
+// the detected one (at the step's end, after the whole free motion) less the free
+// motion still to come, plus what the contact impulses have moved the bodies so far.
+// The free motion to come is counted as the sub-steps count it (sub-step j moves a body
+// by h_sub (v + j dv)), so that a point's separation changes by exactly h_sub times its
+// normal velocity in each sub-step and a resting point sees no gap it could close.
+double separation(const Solver& s, const Row& r, double hs, int done) {
+  const SubstepBody& A = s.substep[r.a];
+  const SubstepBody& B = s.substep[r.b];
+  const int n = kSoftSubsteps, left = n - done;
+  const double steps = hs * left, ramp = hs * 0.5 * (n * (n + 1) - done * (done + 1));
+  auto rest = [&](const Vec3& v, const Vec3& dv) { return Vec3(steps * v + ramp * dv); };
+  const double toCome = normalMove(r, rest(A.v, A.dv), rest(A.w, A.dw), rest(B.v, B.dv), rest(B.w, B.dw));
+  return -r.depth - toCome + normalMove(r, A.move, A.turn, B.move, B.turn);
+}
+
+// The normal impulse of one row in one pass. Apart (a speculative point): it may close
+// its gap within the sub-step. Overlapping beyond the slop, with the bias: the soft
+// push-out. Otherwise (relax, or within the slop) it stops the approach.
+void solveSoftNormal(Solver& s, Row& r, double gap, double hs, const Softness* bias) {
+  double push = 0.0;
+  Softness k;
+  if (gap > 0.0) {
+    push = gap / hs;
+  } else if (bias) {
+    k = *bias;
+    push = std::max(bias->biasRate * std::min(gap + kSlop, 0.0), -kMaxPushOut);
+  }
+  const double vn = relativeVelocity(s, r, r.n);
+  const double total = std::max(r.lambdaN - r.n.mass * k.massScale * (vn + push) - k.impulseScale * r.lambdaN, 0.0);
+  applyImpulse(s, r, r.n, total - r.lambdaN);
+  r.lambdaN = total;
+}
+
+// One pass over the rows (forwards or backwards) at the bodies' positions after `done`
+// sub-steps; `bias` null for the relax pass. Returns the largest velocity change.
+double softPass(Solver& s, double hs, int done, const Softness* bias, bool backwards) {
+  const size_t n = s.rows.size();
+  double change = 0.0;
+  for (size_t k = 0; k < n; ++k) {
+    Row& r = s.rows[backwards ? n - 1 - k : k];
+    const double before = r.lambdaN;
+    solveSoftNormal(s, r, separation(s, r, hs, done), hs, bias);
+    change = std::max({change, std::abs(r.lambdaN - before) / r.n.mass, solveFriction(s, r)});
+  }
+  return change;
+}
+
+// Each moving body's velocity change by the applied forces over one sub-step.
+void addForces(Solver& s) {
+  for (size_t i = 0; i + 1 < s.bodies.size(); ++i) {
+    if (!s.involved[i]) continue;
+    s.bodies[i].v += s.substep[i].dv;
+    s.bodies[i].w += s.substep[i].dw;
+  }
+}
+
+// Each moving body moved by what the contact impulses made of its velocities over the
+// k-th sub-step: its velocity less that of the free motion and of the share of the
+// impacts' kick that does not move it (limitKicks).
+void moveBodies(Solver& s, double hs, int k) {
+  for (size_t i = 0; i + 1 < s.bodies.size(); ++i) {
+    if (!s.involved[i]) continue;
+    SubstepBody& x = s.substep[i];
+    const SolverBody& b = s.bodies[i];
+    const double still = 1.0 - x.kickMoves;
+    x.move += hs * (b.v - x.v - still * x.kick - k * x.dv);
+    x.turn += hs * (b.w - x.w - still * x.spin - k * x.dw);
+  }
+}
+
+// The impacts (answerImpacts: bouncing pairs only, with the soft sub-steps) stop an
+// approach at the step's end; taken over the whole step, their kick would move the body.
+// A located impact leaves no overlap, so its kick moves nothing; one that is not located
+// (the step's cap of impacts reached) has sunk the body by the free motion. A point
+// whose normal velocity the kick changed by more than the resting speed may be closed by
+// the kick's move but not opened beyond touching, as limitMoves does for the passes.
+void limitKicks(Solver& s, const ContactStep& step) {
+  for (const Row& r : s.rows) {
+    if (r.depth < -kTouching) continue;
+    SubstepBody& A = s.substep[r.a];
+    SubstepBody& B = s.substep[r.b];
+    const double kicked = normalMove(r, A.kick, A.spin, B.kick, B.spin);
+    if (!(kicked > step.restingSpeed)) continue;
+    const double opening = step.h * kicked, allowed = std::max(r.depth, 0.0);
+    if (!(opening > allowed)) continue;
+    A.kickMoves = std::min(A.kickMoves, allowed / opening);
+    B.kickMoves = std::min(B.kickMoves, allowed / opening);
+  }
+}
+
+}  // namespace
+
+void beginSubsteps(const WorldModel& model, const ContactStep& step, ContactScratch& s) {
+  s.substep.assign(s.bodies.size(), SubstepBody{});
+  for (size_t i = 0; i + 1 < s.bodies.size(); ++i) {
+    if (!s.involved[i]) continue;
+    const SolverBody& b = s.bodies[i];
+    SubstepBody& x = s.substep[i];
+    x.kick = b.v - b.v0, x.spin = b.w - b.w0;
+    x.v = b.v0, x.w = b.w0;
+    if (step.start) {
+      const BodyState& y = (*step.start)[i];
+      const Mat3 R = y.q.normalized().toRotationMatrix();
+      x.v = y.P / model.bodies[i].mass;
+      x.w = R * model.bodies[i].IbodyInv * R.transpose() * y.L;
+    }
+    x.dv = (b.v0 - x.v) / kSoftSubsteps;
+    x.dw = (b.w0 - x.w) / kSoftSubsteps;
+  }
+  limitKicks(s, step);
+  s.substep.back() = SubstepBody{};  // the static slot moves nothing
+}
+
+void solveSubsteps(const ContactStep& step, ContactScratch& s, ContactSolveReport& report) {
+  const double hs = step.h / kSoftSubsteps;
+  const Softness soft = softness(kSoftFrequencyShare / hs, kSoftDampingRatio, hs);
+  // the velocities back to the step's start (the warm start applied a whole step's
+  // impulses; a sub-step takes its share of them)
+  for (size_t i = 0; i + 1 < s.bodies.size(); ++i) {
+    if (!s.involved[i]) continue;
+    s.bodies[i].v = s.substep[i].v + s.substep[i].kick;
+    s.bodies[i].w = s.substep[i].w + s.substep[i].spin;
+  }
+  for (Row& r : s.rows) {
+    r.lambdaN /= kSoftSubsteps, r.lambdaT1 /= kSoftSubsteps, r.lambdaT2 /= kSoftSubsteps;
+    r.sumN = r.sumT1 = r.sumT2 = 0.0;
+  }
+  for (int k = 1; k <= kSoftSubsteps; ++k) {
+    addForces(s);
+    for (const Row& r : s.rows) applyRowImpulse(s, r, r.lambdaN, r.lambdaT1, r.lambdaT2);
+    for (int pass = 0; pass < kSoftSolvePasses; ++pass) softPass(s, hs, k - 1, &soft, pass % 2 == 1);
+    moveBodies(s, hs, k);
+    for (int pass = 0; pass < kSoftRelaxPasses; ++pass) report.residual = softPass(s, hs, k, nullptr, pass % 2 == 0);
+    for (Row& r : s.rows) r.sumN += r.lambdaN, r.sumT1 += r.lambdaT1, r.sumT2 += r.lambdaT2;
+  }
+  for (Row& r : s.rows) r.lambdaN = r.sumN, r.lambdaT1 = r.sumT1, r.lambdaT2 = r.sumT2;
+  report.iterations = kSoftSubsteps * (kSoftSolvePasses + kSoftRelaxPasses);
+}
+
+void moveBySubsteps(const ContactScratch& s, std::vector<BodyState>& Y) {
+  for (size_t i = 0; i + 1 < s.bodies.size(); ++i) {
+    if (!s.involved[i]) continue;
+    const SubstepBody& x = s.substep[i];
+    if (x.move.isZero(0.0) && x.turn.isZero(0.0)) continue;
+    Y[i].X += x.move;
+    const Quat& q = Y[i].q;
+    const Quat half(0.0, 0.5 * x.turn.x(), 0.5 * x.turn.y(), 0.5 * x.turn.z());
+    Y[i].q = Quat(q.coeffs() + (half * q).coeffs()).normalized();
+  }
+}
+
+}  // namespace rigid

@@ -199,7 +199,7 @@ void markVelocities(Solver& s) {
 }
 
 // One row takes the impulses of memory[m], clamped to its friction disc.
-void remember(const ContactMemory& m, Solver& s, Row& r) {
+void remember(const ContactMemory& m, Row& r) {
   r.sliding = m.sliding;
   r.remembered = true;
   r.lambdaN = m.normalImpulse;
@@ -207,11 +207,11 @@ void remember(const ContactMemory& m, Solver& s, Row& r) {
   r.lambdaT2 = m.tangentImpulse.dot(r.t2.d);
   const double limit = (r.sliding ? r.k.muk : r.k.mus) * r.lambdaN, t = length(r.lambdaT1, r.lambdaT2);
   if (t > limit) r.lambdaT1 *= limit / t, r.lambdaT2 *= limit / t;
-  applyRowImpulse(s, r, r.lambdaN, r.lambdaT1, r.lambdaT2);
 }
 
 // Each row takes the impulses of last step's nearest point of the same pair (body a's
-// frame, within kMatchDistance), each old point used once, and applies them. Rows and
+// frame, within kMatchDistance), each old point used once (applyWarmStart applies them:
+// the soft sub-steps apply their share in each sub-step instead). Rows and
 // memory are both in the detector's pair order: one search per pair. A body sticks or
 // slides as a whole, so a pair's new points take its remembered state.
 void warmStart(const std::vector<ContactMemory>& memory, Solver& s) {
@@ -239,13 +239,19 @@ void warmStart(const std::vector<ContactMemory>& memory, Solver& s) {
       }
       if (best == memory.size()) continue;
       s.used[best] = 1;
-      remember(memory[best], s, r);
+      remember(memory[best], r);
       state = r.sliding ? 1 : 0;
     }
     if (state >= 0)
       for (size_t k = i; k < end; ++k) s.rows[k].sliding = state == 1;
     i = end;
   }
+}
+
+// The remembered impulses onto the bodies' velocities, the passes' starting point.
+void applyWarmStart(Solver& s) {
+  for (const Row& r : s.rows)
+    if (r.remembered) applyRowImpulse(s, r, r.lambdaN, r.lambdaT1, r.lambdaT2);
 }
 
 // ---- velocities ------------------------------------------------------------------
@@ -775,6 +781,7 @@ ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Cont
     storeMomenta(model, s, Y);
     moveBySubsteps(s, Y);
   } else {
+    applyWarmStart(s);
     solveVelocities(s, report);
     shockPass(s);
     storeMomenta(model, s, Y);

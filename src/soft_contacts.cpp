@@ -141,14 +141,13 @@ void beginSubsteps(const WorldModel& model, const ContactStep& step, ContactScra
     x.dw = (b.w0 - x.w) / kSoftSubsteps;
   }
   limitKicks(s, step);
-  s.substep.back() = SubstepBody{};  // the static slot moves nothing
 }
 
 void solveSubsteps(const ContactStep& step, ContactScratch& s, ContactSolveReport& report) {
   const double hs = step.h / kSoftSubsteps;
   const Softness soft = softness(kSoftFrequencyShare / hs, kSoftDampingRatio, hs);
-  // the velocities back to the step's start (the warm start applied a whole step's
-  // impulses; a sub-step takes its share of them)
+  // the velocities back to the step's start (the free motion is re-added in quarters);
+  // each sub-step takes its share of the remembered impulses
   for (size_t i = 0; i + 1 < s.bodies.size(); ++i) {
     if (!s.involved[i]) continue;
     s.bodies[i].v = s.substep[i].v + s.substep[i].kick;

@@ -27,7 +27,7 @@ namespace rigid {
 // the impacts' change of its velocities (v - v0 after answerImpacts).
 void beginSubsteps(const WorldModel& model, const ContactStep& step, ContactScratch& s);
 
-// After the warm start (which applied each row's remembered step impulse): the
+// After the warm start (which matched each row's remembered step impulse, unapplied): the
 // sub-steps. Leaves the bodies' velocities at the step's end, each row's impulses at
 // their sum over the sub-steps (the step's, as the passes leave them), and each body's
 // move in s.substep.

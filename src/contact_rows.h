@@ -72,11 +72,12 @@ struct Row {
 // The soft stage's view of one body (soft_contacts.cpp): the free motion the integrator
 // gave it over the step, and what the contact impulses have moved it beyond that.
 struct SubstepBody {
-  Vec3 v = Vec3::Zero(), w = Vec3::Zero();        // velocities of the free motion at the step's start
-  Vec3 dv = Vec3::Zero(), dw = Vec3::Zero();      // the applied forces' velocity change per sub-step
-  Vec3 kick = Vec3::Zero(), spin = Vec3::Zero();  // the impacts' velocity change
-  double kickMoves = 1.0;                         // the share of h times the kick that moves the body (limitKicks)
-  Vec3 move = Vec3::Zero(), turn = Vec3::Zero();  // m, rad: displacement by the contact impulses so far
+  Vec3 v = Vec3::Zero(), w = Vec3::Zero();          // velocities of the free motion at the step's start
+  Vec3 dv = Vec3::Zero(), dw = Vec3::Zero();        // the applied forces' velocity change per sub-step
+  Vec3 kick = Vec3::Zero(), spin = Vec3::Zero();    // the impacts' velocity change
+  Vec3 drift = Vec3::Zero(), twist = Vec3::Zero();  // m, rad per sub-step: the integrator's free motion beyond that
+  double kickMoves = 1.0;                           // the share of h times the kick that moves the body (limitKicks)
+  Vec3 move = Vec3::Zero(), turn = Vec3::Zero();    // m, rad: displacement by the contact impulses so far
 };
 
 }  // namespace contact_rows

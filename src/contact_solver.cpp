@@ -774,7 +774,7 @@ ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Cont
   markVelocities(s);
   report.impactPasses = answerImpacts(s, step, pushes);
   const bool soft = step.model == ContactModel::Soft;
-  if (soft) beginSubsteps(model, step, s);
+  if (soft) beginSubsteps(model, step, Y, s);
   warmStart(memory, s);
   if (soft) {
     solveSubsteps(step, s, report);

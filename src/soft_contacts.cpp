@@ -33,16 +33,22 @@ double normalMove(const Row& r, const Vec3& moveA, const Vec3& turnA, const Vec3
 // The row's separation (m, < 0: overlap) after `done` of the kSoftSubsteps sub-steps:
 // the detected one (at the step's end, after the whole free motion) less the free
 // motion still to come, plus what the contact impulses have moved the bodies so far.
-// The free motion to come is counted as the sub-steps count it (sub-step j moves a body
-// by h_sub (v + j dv)), so that a point's separation changes by exactly h_sub times its
-// normal velocity in each sub-step and a resting point sees no gap it could close.
+// Sub-step j's free motion is h_sub (v + (j - 1/2) dv) + drift: the velocity at its
+// middle, and the drift that makes the sub-steps' motion add up to the integrator's
+// (none for RK4 under constant forces; explicit Euler's h v lacks h dv_total / 2).
+// moveBodies counts it the same way, so that a point's separation changes by exactly
+// h_sub times its normal velocity in each sub-step and a resting point sees neither a
+// gap it could close nor an overlap.
 double separation(const Solver& s, const Row& r, double hs, int done) {
   const SubstepBody& A = s.substep[r.a];
   const SubstepBody& B = s.substep[r.b];
   const int n = kSoftSubsteps, left = n - done;
-  const double steps = hs * left, ramp = hs * 0.5 * (n * (n + 1) - done * (done + 1));
-  auto rest = [&](const Vec3& v, const Vec3& dv) { return Vec3(steps * v + ramp * dv); };
-  const double toCome = normalMove(r, rest(A.v, A.dv), rest(A.w, A.dw), rest(B.v, B.dv), rest(B.w, B.dw));
+  const double steps = hs * left, ramp = hs * 0.5 * (n * n - done * done);
+  auto rest = [&](const Vec3& v, const Vec3& dv, const Vec3& drift) {
+    return Vec3(steps * v + ramp * dv + left * drift);
+  };
+  const double toCome = normalMove(r, rest(A.v, A.dv, A.drift), rest(A.w, A.dw, A.twist), rest(B.v, B.dv, B.drift),
+                                   rest(B.w, B.dw, B.twist));
   return -r.depth - toCome + normalMove(r, A.move, A.turn, B.move, B.turn);
 }
 
@@ -96,8 +102,8 @@ void moveBodies(Solver& s, double hs, int k) {
     SubstepBody& x = s.substep[i];
     const SolverBody& b = s.bodies[i];
     const double still = 1.0 - x.kickMoves;
-    x.move += hs * (b.v - x.v - still * x.kick - k * x.dv);
-    x.turn += hs * (b.w - x.w - still * x.spin - k * x.dw);
+    x.move += hs * (b.v - x.v - still * x.kick - (k - 0.5) * x.dv) - x.drift;
+    x.turn += hs * (b.w - x.w - still * x.spin - (k - 0.5) * x.dw) - x.twist;
   }
 }
 
@@ -121,9 +127,18 @@ void limitKicks(Solver& s, const ContactStep& step) {
   }
 }
 
+// The rotation vector (rad) that turns q0 into q1.
+Vec3 rotationBetween(const Quat& q0, const Quat& q1) {
+  Quat d = q1.normalized() * q0.normalized().conjugate();
+  if (d.w() < 0.0) d.coeffs() = -d.coeffs();  // the short way round
+  const Eigen::AngleAxisd turn(d);
+  return turn.angle() * turn.axis();
+}
+
 }  // namespace
 
-void beginSubsteps(const WorldModel& model, const ContactStep& step, ContactScratch& s) {
+void beginSubsteps(const WorldModel& model, const ContactStep& step, const std::vector<BodyState>& Y,
+                   ContactScratch& s) {
   s.substep.assign(s.bodies.size(), SubstepBody{});
   for (size_t i = 0; i + 1 < s.bodies.size(); ++i) {
     if (!s.involved[i]) continue;
@@ -132,13 +147,16 @@ void beginSubsteps(const WorldModel& model, const ContactStep& step, ContactScra
     x.kick = b.v - b.v0, x.spin = b.w - b.w0;
     x.v = b.v0, x.w = b.w0;
     if (step.start) {
-      const BodyState& y = (*step.start)[i];
-      const Mat3 R = y.q.normalized().toRotationMatrix();
-      x.v = y.P / model.bodies[i].mass;
-      x.w = R * model.bodies[i].IbodyInv * R.transpose() * y.L;
+      const BodyState& y0 = (*step.start)[i];
+      const Mat3 R = y0.q.normalized().toRotationMatrix();
+      x.v = y0.P / model.bodies[i].mass;
+      x.w = R * model.bodies[i].IbodyInv * R.transpose() * y0.L;
+      const int n = kSoftSubsteps;
+      const double hs = step.h / n;
+      x.dv = (b.v0 - x.v) / n, x.dw = (b.w0 - x.w) / n;
+      x.drift = (Y[i].X - y0.X) / n - hs * (x.v + 0.5 * n * x.dv);
+      x.twist = rotationBetween(y0.q, Y[i].q) / n - hs * (x.w + 0.5 * n * x.dw);
     }
-    x.dv = (b.v0 - x.v) / kSoftSubsteps;
-    x.dw = (b.w0 - x.w) / kSoftSubsteps;
   }
   limitKicks(s, step);
 }

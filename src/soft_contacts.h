@@ -23,9 +23,10 @@
 
 namespace rigid {
 
-// Before the warm start: each body's free motion over the step (from step.start) and
+// Before the warm start: each body's free motion over the step (from step.start to Y) and
 // the impacts' change of its velocities (v - v0 after answerImpacts).
-void beginSubsteps(const WorldModel& model, const ContactStep& step, ContactScratch& s);
+void beginSubsteps(const WorldModel& model, const ContactStep& step, const std::vector<BodyState>& Y,
+                   ContactScratch& s);
 
 // After the warm start (which matched each row's remembered step impulse, unapplied): the
 // sub-steps. Leaves the bodies' velocities at the step's end, each row's impulses at

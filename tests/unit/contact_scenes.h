@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -47,11 +48,17 @@ inline json box(const std::string& name, const Vec3& size, const Vec3& position,
 // (A braced single object is that object to nlohmann::json, not a list: one is wrapped.)
 // Sleep is off: the solver's tests judge its own rest, and a sleeping island would hide
 // a pile that the solver leaves creeping slower than the sleep speed (test_sleep.cpp
-// sets it on).
+// sets it on). The contact solver is the default unless RIGID_CONTACTS names another
+// ("soft"): `RIGID_CONTACTS=soft build/rigid_unit_tests` holds the experimental solver
+// to every contact test.
 inline json sceneOf(const json& bodies, const json& surfaces, double step = 1e-3, const char* method = "rk4") {
   auto list = [](const json& j) { return j.is_array() ? j : json::array({j}); };
   return {{"name", "T"},
-          {"solver", {{"method", method}, {"step", step}, {"contacts", "manifold"}, {"sleep", false}}},
+          {"solver",
+           {{"method", method},
+            {"step", step},
+            {"contacts", std::getenv("RIGID_CONTACTS") ? std::getenv("RIGID_CONTACTS") : "manifold"},
+            {"sleep", false}}},
           {"bodies", list(bodies)},
           {"surfaces", list(surfaces)}};
 }

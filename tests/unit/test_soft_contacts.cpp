@@ -1,9 +1,8 @@
 // The soft sub-steps (solver.contacts = "soft", src/soft_contacts.h), an experimental
 // contact solver beside the default: what it is already held to. Resting and landing
-// cubes at their face-down height, a stack that stands (within the looser speed it
-// leaves: a fixed number of passes leaves ~1e-3 m/s in a resting stack), next to no
-// energy gained through contact (a looser bound than the default's), and the same
-// passes for every solve.
+// cubes at their face-down height, a stack that stands and rests, next to no energy
+// gained through contact (a looser bound than the default's), and the same passes for
+// every solve.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -27,11 +26,17 @@ json soft(json scene) {
 
 constexpr double kStep = 2e-3;  // s, the benchmark's piles' step
 
-// A cube set down on the floor stays at its face-down height within the slop, at rest.
+// A cube set down on the floor rests at its face-down height, sunk by the slop and by
+// the soft contact's deflection under its weight: a spring of natural frequency f
+// (kSoftFrequencyShare of the sub-step rate) holds a mass m at m g / (m omega^2) =
+// g / omega^2 beyond the slop (1 um at a 2 ms step).
 TEST(SoftContacts, CubeSetDownRestsAtItsFaceDownHeight) {
+  using namespace rigid::contact_solver;
   Sim sim(soft(sceneOf(box("cube", Vec3::Constant(kEdge), Vec3(0, 0, 0.5 * kEdge)), {floorSurface()}, kStep)));
   sim.run(1.0);
-  EXPECT_NEAR(sim.data.Y[0].X.z(), 0.5 * kEdge, rigid::contact_solver::kSlop);
+  const double omega = 2.0 * 3.14159265358979323846 * kSoftFrequencyShare * kSoftSubsteps / kStep;
+  const double deflection = kG / (omega * omega);
+  EXPECT_NEAR(sim.data.Y[0].X.z(), 0.5 * kEdge - kSlop - deflection, 0.1 * deflection);
   EXPECT_LT(sim.fastest(), 1e-3);
   EXPECT_LT(sim.data.aux[0].omega.norm(), 1e-2);
 }
@@ -49,8 +54,8 @@ TEST(SoftContacts, CubeDroppedLandsWithoutSinkingAndRests) {
 }
 
 // A stack of ten cubes set down touching: every cube within 1 mm of where it was at
-// 0.5 s after 10 s, no overlap deeper than 1 mm, and no cube faster than 1 cm/s at the
-// end (the default solver's stacks are held to 1 mm/s; this one measured 3 mm/s).
+// 0.5 s after 10 s, no overlap deeper than 1 mm, and no cube faster than 1 mm/s at the
+// end.
 TEST(SoftContacts, StackOfTenCubesStands) {
   json bodies = json::array();
   for (int i = 0; i < 10; ++i)
@@ -59,15 +64,14 @@ TEST(SoftContacts, StackOfTenCubesStands) {
   const double drift = driftAfterSettling(sim, 0.5, 9.5);
   EXPECT_LT(drift, 1e-3);
   EXPECT_LT(sim.deepestOverlap(), 1e-3);
-  EXPECT_LT(sim.fastest(), 1e-2);
+  EXPECT_LT(sim.fastest(), 1e-3);
   std::printf("drift %.3g m, fastest %.3g m/s at 10 s\n", drift, sim.fastest());
 }
 
 // Contact alone adds next to no mechanical energy: through a falling, tumbling pile of
 // 27 (55.6 J) no step ends with more than the last one's plus 1e-3 J, and the run ends
-// below its start. The default solver is held to 1e-5 J; this one measured 5.8e-4 J: its
-// resting cubes jitter (rises every third step, half kinetic and half potential), a gap
-// to close before it can be the default.
+// below its start. The default solver is held to 1e-5 J; this one measured 1.5e-4 J, a
+// gap to close before it can be the default.
 TEST(SoftContacts, MechanicalEnergyNeverRisesThroughContact) {
   Sim sim(soft(sceneOf(pile(27, 3), {floorSurface()}, kStep)));
   const EnergyRun e = runWatchingEnergy(sim, 1.5);

@@ -64,6 +64,7 @@ struct Row {
   bool held = false;           // solveBlock: its friction is not an unknown of the block
   bool sliding = false;        // friction limited by mu_k (else mu_s), for the whole solve
   bool remembered = false;     // matched to a point of last step
+  bool atLimit = false;        // its friction on the edge of its disc when the solve ended (markLimits)
   Vec3 localA = Vec3::Zero();  // m, the point in body a's frame (matches last step's points)
   const Contact* contact = nullptr;
   double sumN = 0.0, sumT1 = 0.0, sumT2 = 0.0;  // soft sub-steps: the impulses summed over them
@@ -161,6 +162,13 @@ inline void clampToDisc(double& l1, double& l2, double limit) {
 // The friction disc's radius: mu lambda_n, mu = mu_s for a sticking point and mu_k for
 // a sliding one.
 inline double frictionLimit(const Row& r) { return (r.sliding ? r.k.muk : r.k.mus) * r.lambdaN; }
+
+// Each row's friction marked on the edge of its disc or inside it, from the impulses of
+// the solve's last pass (the soft sub-steps mark them before summing the sub-steps'
+// impulses, whose directions turn with a spinning body).
+inline void markLimits(Solver& s) {
+  for (Row& r : s.rows) r.atLimit = length(r.lambdaT1, r.lambdaT2) >= (1.0 - 1e-9) * frictionLimit(r);
+}
 
 // Friction: the impulse that stops the slip, projected onto the disc |lambda_t| <=
 // mu lambda_n, mu = mu_s for a sticking point and mu_k for a sliding one. (Switching

@@ -705,7 +705,7 @@ bool pairSlides(const Solver& s, size_t begin, size_t end, double slideSpeed) {
     const Row& r = s.rows[k];
     if (r.lambdaN <= 0.0) continue;
     loaded = true;
-    if (length(r.lambdaT1, r.lambdaT2) < (1.0 - 1e-9) * frictionLimit(r)) return false;
+    if (!r.atLimit) return false;
     slip = std::max(slip, length(relativeVelocity(s, r, r.t1), relativeVelocity(s, r, r.t2)));
   }
   return loaded && slip > slideSpeed;
@@ -786,6 +786,7 @@ ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Cont
     shockPass(s);
     storeMomenta(model, s, Y);
     correctPositions(s, step, Y);
+    markLimits(s);
   }
   store(s, std::max(kVelocityTolerance, 0.01 * step.restingSpeed), memory);
   pushSurfaces(s, pushes);

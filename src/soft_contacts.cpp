@@ -183,6 +183,7 @@ void solveSubsteps(const ContactStep& step, ContactScratch& s, ContactSolveRepor
     for (int pass = 0; pass < kSoftRelaxPasses; ++pass) report.residual = softPass(s, hs, k, nullptr, pass % 2 == 0);
     for (Row& r : s.rows) r.sumN += r.lambdaN, r.sumT1 += r.lambdaT1, r.sumT2 += r.lambdaT2;
   }
+  markLimits(s);
   for (Row& r : s.rows) r.lambdaN = r.sumN, r.lambdaT1 = r.sumT1, r.lambdaT2 = r.sumT2;
   report.iterations = kSoftSubsteps * (kSoftSolvePasses + kSoftRelaxPasses);
 }

@@ -33,6 +33,17 @@ inline json floorSurface(double mus = 0.6, double muk = 0.6, double xi = 0.0) {
           {"staticFriction", mus}, {"kineticFriction", muk}, {"restitution", xi}};
 }
 
+// A slab 10 m x 2 m x 1 m turned by `turn` about its centre (the origin): a ramp.
+inline json rampSurface(const Quat& turn, double mus, double muk) {
+  return {{"name", "ramp"},
+          {"min", {-5, -1, -0.5}},
+          {"max", {5, 1, 0.5}},
+          {"staticFriction", mus},
+          {"kineticFriction", muk},
+          {"restitution", 0.0},
+          {"orientation", {turn.w(), turn.x(), turn.y(), turn.z()}}};
+}
+
 inline json box(const std::string& name, const Vec3& size, const Vec3& position, const Quat& q = Quat::Identity(),
                 double xi = 0.0, double mus = 0.6, double muk = 0.6) {
   return {{"name", name},

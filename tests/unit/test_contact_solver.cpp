@@ -241,13 +241,7 @@ struct RampRun {
 
 RampRun cubeDownRamp(double theta, double T, const char* method = "rk4") {
   const Quat turn(Eigen::AngleAxisd(theta, Vec3::UnitY()));
-  json ramp = {{"name", "ramp"},
-               {"min", {-5, -1, -0.5}},
-               {"max", {5, 1, 0.5}},
-               {"staticFriction", 0.5},
-               {"kineticFriction", 0.3},
-               {"restitution", 0.0},
-               {"orientation", {turn.w(), turn.x(), turn.y(), turn.z()}}};
+  const json ramp = rampSurface(turn, 0.5, 0.3);
   const Vec3 normal = turn * Vec3::UnitZ(), down = turn * Vec3::UnitX();
   const Vec3 start = (0.5 + 0.1) * normal;
   Sim sim(sceneOf(box("cube", Vec3::Constant(0.2), start, turn, 0.0, 0.5, 0.3), ramp, 1e-3, method));

@@ -68,6 +68,20 @@ TEST(SoftContacts, StackOfTenCubesStands) {
   std::printf("drift %.3g m, fastest %.3g m/s at 10 s\n", drift, sim.fastest());
 }
 
+// A cube on a 30 deg ramp (tan 30 deg > mu_s = 0.5) slides from the first steps with
+// a = g (sin(theta) - mu_k cos(theta)): within 0.5 % over 2 s. Each step's impulses sum
+// four sub-steps'; the pair is judged sliding from the last sub-step's friction, on the
+// edge of its disc (the sum of sub-steps whose directions turn need not be).
+TEST(SoftContacts, CubeDownARampSlidesWithKineticFriction) {
+  const double theta = 30.0 * 3.14159265358979323846 / 180.0, T = 2.0;
+  const Quat turn(Eigen::AngleAxisd(theta, Vec3::UnitY()));
+  const Vec3 start = (0.5 + 0.1) * (turn * Vec3::UnitZ());
+  Sim sim(soft(sceneOf(box("cube", Vec3::Constant(0.2), start, turn, 0.0, 0.5, 0.3), rampSurface(turn, 0.5, 0.3))));
+  sim.run(T);
+  const double expected = 0.5 * kG * (std::sin(theta) - 0.3 * std::cos(theta)) * T * T;
+  EXPECT_NEAR((sim.data.Y[0].X - start).dot(turn * Vec3::UnitX()), expected, 5e-3 * expected);
+}
+
 // Contact alone adds next to no mechanical energy: through a falling, tumbling pile of
 // 27 (55.6 J) no step ends with more than the last one's plus 1e-3 J, and the run ends
 // below its start. The default solver is held to 1e-5 J; this one measured 1.5e-4 J, a

@@ -80,14 +80,17 @@ constexpr double kMaxPushOut = 1.0;      // m/s, cap of the position correction'
 constexpr double kMatchDistance = 0.01;  // m: a point within this of last step's (body a's frame) is the same
 // Soft sub-steps (solver.contacts = "soft", soft_contacts.h): the sub-steps of a step,
 // the passes with the soft bias and without it (relax) in each, the contact's natural
-// frequency as a share of the sub-step rate (Box2D's upper bound, omega h_sub = pi / 2:
-// stiff and still stable), and its damping ratio. Two passes of each leave a stack of
-// 10 cubes at 1e-4 m/s after 10 s (SoftContacts.StackOfTenCubesStands).
+// frequency as a share of the sub-step rate, its damping ratio, and the overlap it
+// holds rigidly before the spring takes over. A tenth of the sub-step rate with a 5 um
+// slop put the pile of 1000 to sleep by 2 s; a quarter (Box2D's upper bound, omega h_sub
+// = pi / 2) left it at 1 cm/s at 3 s, and with the default's 0.1 mm slop a box on a ramp
+// just below its static limit crept.
 constexpr int kSoftSubsteps = 4;
 constexpr int kSoftSolvePasses = 2;
 constexpr int kSoftRelaxPasses = 2;
-constexpr double kSoftFrequencyShare = 0.25;
+constexpr double kSoftFrequencyShare = 0.1;
 constexpr double kSoftDampingRatio = 10.0;
+constexpr double kSoftSlop = 5e-6;  // m
 }  // namespace contact_solver
 
 // The solver's work buffers (contact_solver.cpp), kept from one solve to the next.

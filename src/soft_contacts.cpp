@@ -53,16 +53,19 @@ double separation(const Solver& s, const Row& r, double hs, int done) {
 }
 
 // The normal impulse of one row in one pass. Apart (a speculative point): it may close
-// its gap within the sub-step. Overlapping beyond the slop, with the bias: the soft
-// push-out. Otherwise (relax, or within the slop) it stops the approach.
+// its gap within the sub-step. Overlapping beyond kSoftSlop, with the bias: the soft
+// push-out, a spring from kSoftSlop on. Otherwise (relax, or within kSoftSlop) it stops
+// the approach rigidly: a damper there (the spring's coefficients without its push)
+// let a body set down touching sink over seconds, and a box on a ramp just below its
+// static limit creep down it as it sank.
 void solveSoftNormal(Solver& s, Row& r, double gap, double hs, const Softness* bias) {
   double push = 0.0;
   Softness k;
   if (gap > 0.0) {
     push = gap / hs;
-  } else if (bias) {
+  } else if (bias && gap + kSoftSlop < 0.0) {
     k = *bias;
-    push = std::max(bias->biasRate * std::min(gap + kSlop, 0.0), -kMaxPushOut);
+    push = std::max(bias->biasRate * (gap + kSoftSlop), -kMaxPushOut);
   }
   const double vn = relativeVelocity(s, r, r.n);
   const double total = std::max(r.lambdaN - r.n.mass * k.massScale * (vn + push) - k.impulseScale * r.lambdaN, 0.0);

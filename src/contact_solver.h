@@ -83,8 +83,8 @@ constexpr double kMatchDistance = 0.01;  // m: a point within this of last step'
 // frequency as a share of the sub-step rate, its damping ratio, and the overlap it
 // holds rigidly before the spring takes over. A tenth of the sub-step rate with a 5 um
 // slop put the pile of 1000 to sleep by 2 s; a quarter (Box2D's upper bound, omega h_sub
-// = pi / 2) left it at 1 cm/s at 3 s, and with the default's 0.1 mm slop a box on a ramp
-// just below its static limit crept.
+// = pi / 2) left it at 2.4 cm/s at 3 s, and with the default's 0.1 mm slop (a damper
+// within it) a box on a ramp just below its static limit crept.
 constexpr int kSoftSubsteps = 4;
 constexpr int kSoftSolvePasses = 2;
 constexpr int kSoftRelaxPasses = 2;

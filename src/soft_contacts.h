@@ -13,8 +13,8 @@
 // a small overlap that the next sub-steps' bias takes out, where the Gauss-Seidel
 // passes (the default) iterate to a tolerance and a tall column takes the cap.
 // Speculative points may close their gap within the sub-step and no more. Experimental:
-// it does not yet hold every contact test (static friction at its limit, mass ratios,
-// a dropped column's rest; docs/guide/surfaces-and-contacts.md, "Soft sub-steps").
+// it does not yet hold every contact test (mass ratios, a dropped column's rest, the
+// energy bound; docs/guide/surfaces-and-contacts.md, "Soft sub-steps").
 #pragma once
 
 #include <vector>

@@ -1,8 +1,8 @@
 // The soft sub-steps (solver.contacts = "soft", src/soft_contacts.h), an experimental
 // contact solver beside the default: what it is already held to. Resting and landing
-// cubes at their face-down height, a stack that stands and rests, next to no energy
-// gained through contact (a looser bound than the default's), and the same passes for
-// every solve.
+// cubes at their face-down height, a stack that stands and rests, kinetic and static
+// friction on a ramp, next to no energy gained through contact (a looser bound than the
+// default's), and the same passes for every solve.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -33,11 +33,12 @@ inline json floorSurface(double mus = 0.6, double muk = 0.6, double xi = 0.0) {
           {"staticFriction", mus}, {"kineticFriction", muk}, {"restitution", xi}};
 }
 
-// A slab 10 m x 2 m x 1 m turned by `turn` about its centre (the origin): a ramp.
-inline json rampSurface(const Quat& turn, double mus, double muk) {
+// A slab 10 m x 2 m x 1 m centred at `centre` and turned by `turn` about it: a ramp.
+inline json rampSurface(const Quat& turn, double mus, double muk, const Vec3& centre = Vec3::Zero()) {
+  const Vec3 lo = centre - Vec3(5, 1, 0.5), hi = centre + Vec3(5, 1, 0.5);
   return {{"name", "ramp"},
-          {"min", {-5, -1, -0.5}},
-          {"max", {5, 1, 0.5}},
+          {"min", {lo.x(), lo.y(), lo.z()}},
+          {"max", {hi.x(), hi.y(), hi.z()}},
           {"staticFriction", mus},
           {"kineticFriction", muk},
           {"restitution", 0.0},

@@ -311,14 +311,9 @@ TEST(ContactSolver, SphereAndCylinderRollOnALevelFloorWithoutLosingSpeed) {
 // The distance down the slope after T is a T^2 / 2.
 double distanceDownIncline(const char* shape, double theta, double mus, double muk, double T) {
   const Quat turn(Eigen::AngleAxisd(theta, Vec3::UnitY()));
-  json ramp = {{"name", "ramp"},
-               {"min", {-5, -1, -1}},
-               {"max", {5, 1, 0}},
-               {"staticFriction", mus},
-               {"kineticFriction", muk},
-               {"restitution", 0.0},
-               {"orientation", {turn.w(), turn.x(), turn.y(), turn.z()}}};
-  const Vec3 centre(0, 0, -0.5), normal = turn * Vec3::UnitZ(), down = turn * Vec3::UnitX();
+  const Vec3 centre(0, 0, -0.5);
+  const json ramp = rampSurface(turn, mus, muk, centre);
+  const Vec3 normal = turn * Vec3::UnitZ(), down = turn * Vec3::UnitX();
   const Vec3 start = centre + 0.5 * normal + 0.1 * normal - 2.0 * down;
   Sim sim(sceneOf({roller(shape, start, Vec3::Zero(), Vec3::Zero(), mus, muk, turn)}, {ramp}));
   sim.run(T);

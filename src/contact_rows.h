@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -67,7 +68,8 @@ struct Row {
   bool atLimit = false;        // its friction on the edge of its disc when the solve ended (markLimits)
   Vec3 localA = Vec3::Zero();  // m, the point in body a's frame (matches last step's points)
   const Contact* contact = nullptr;
-  double sumN = 0.0, sumT1 = 0.0, sumT2 = 0.0;  // soft sub-steps: the impulses summed over them
+  double sumN = 0.0, sumT1 = 0.0, sumT2 = 0.0;     // soft sub-steps: the impulses summed over them
+  double warmN = 0.0, warmT1 = 0.0, warmT2 = 0.0;  // soft sub-steps: the last sub-step's, to start the next
 };
 
 // The soft stage's view of one body (soft_contacts.cpp): the free motion the integrator
@@ -92,22 +94,23 @@ struct ContactScratch {
   std::vector<SolverBody> bodies;  // one per body, then the static slot
   std::vector<char> involved;      // bodies that some row touches
   std::vector<Row> rows;
-  std::vector<Row> impacts;                       // answerImpacts' merged pairs
-  std::vector<size_t> deep;                       // rows overlapping by more than the slop
-  std::vector<double> moveScale;                  // limitMoves: each body's share of the solve's move
-  std::vector<char> used;                         // warmStart: memory points already matched
-  std::vector<int> island;                        // findBlockIslands: each body's island (union-find)
-  std::vector<size_t> islandRows;                 // findBlockIslands: rows grouped by island
-  std::vector<std::pair<size_t, size_t>> blocks;  // findBlockIslands: islands for solveBlock
-  std::vector<size_t> block;                      // solveBlockIslands: one island's rows
-  std::vector<size_t> active;                     // solveBlock: the rows whose impulses are solved
-  std::vector<std::pair<size_t, int>> unknowns;   // solveBlock: (row, axis) of each unknown
-  Eigen::MatrixXd K, regular;                     // solveBlock: its matrix, and that matrix made regular
-  Eigen::VectorXd residual, delta;                // solveBlock: velocity errors, impulse changes
-  Eigen::LDLT<Eigen::MatrixXd> factors;           // solveBlock: of `regular`
-  std::vector<int> level;                         // shockPass: each body's height in the support graph
-  std::vector<size_t> climb;                      // shockPass: the rows between levels, lowest first
-  std::vector<SubstepBody> substep;               // soft_contacts: each body's free motion and move
+  std::vector<Row> impacts;                            // impactRows: the merged pairs
+  std::vector<std::pair<size_t, size_t>> impactPairs;  // impactRows: the rows of each
+  std::vector<size_t> deep;                            // rows overlapping by more than the slop
+  std::vector<double> moveScale;                       // limitMoves: each body's share of the solve's move
+  std::vector<char> used;                              // warmStart: memory points already matched
+  std::vector<int> island;                             // findBlockIslands: each body's island (union-find)
+  std::vector<size_t> islandRows;                      // findBlockIslands: rows grouped by island
+  std::vector<std::pair<size_t, size_t>> blocks;       // findBlockIslands: islands for solveBlock
+  std::vector<size_t> block;                           // solveBlockIslands: one island's rows
+  std::vector<size_t> active;                          // solveBlock: the rows whose impulses are solved
+  std::vector<std::pair<size_t, int>> unknowns;        // solveBlock: (row, axis) of each unknown
+  Eigen::MatrixXd K, regular;                          // solveBlock: its matrix, and that matrix made regular
+  Eigen::VectorXd residual, delta;                     // solveBlock: velocity errors, impulse changes
+  Eigen::LDLT<Eigen::MatrixXd> factors;                // solveBlock: of `regular`
+  std::vector<int> level;                              // shockPass: each body's height in the support graph
+  std::vector<size_t> climb;                           // shockPass: the rows between levels, lowest first
+  std::vector<SubstepBody> substep;                    // soft_contacts: each body's free motion and move
   int staticSlot() const { return static_cast<int>(bodies.size()) - 1; }
 };
 
@@ -118,6 +121,26 @@ using Solver = ContactScratch;
 // |(x, y)|: std::hypot guards against overflow at a cost that showed as a quarter of a
 // pile's solve; impulses are nowhere near overflowing.
 inline double length(double x, double y) { return std::sqrt(x * x + y * y); }
+
+// The end of the rows of the pair that row i belongs to (rows come grouped by pair).
+inline size_t pairEnd(const Solver& s, size_t i) {
+  size_t end = i;
+  while (end < s.rows.size() && s.rows[end].a == s.rows[i].a && s.rows[end].b == s.rows[i].b &&
+         s.rows[end].contact->surface == s.rows[i].contact->surface)
+    ++end;
+  return end;
+}
+
+inline Axis axisOf(const SolverBody& A, const SolverBody& B, const Vec3& ra, const Vec3& rb, const Vec3& d) {
+  Axis x;
+  x.d = d;
+  x.raXd = ra.cross(d);
+  x.rbXd = rb.cross(d);
+  x.spinA = A.Iinv * x.raXd;
+  x.spinB = B.Iinv * x.rbXd;
+  x.mass = 1.0 / (A.invMass + B.invMass + x.raXd.dot(x.spinA) + x.rbXd.dot(x.spinB));
+  return x;
+}
 
 // Velocity of b relative to a at the point, along the axis.
 inline double relativeVelocity(const Solver& s, const Row& r, const Axis& x) {

@@ -8,9 +8,11 @@
 
 #include <Eigen/Dense>
 
+#include "block_solve.h"
+#include "contact_impacts.h"
 #include "contact_rows.h"
 #include "contact_rules.h"
-#include "islands.h"
+#include "shock_propagation.h"
 #include "soft_contacts.h"
 
 namespace rigid {
@@ -22,15 +24,6 @@ void ContactScratchDeleter::operator()(ContactScratch* s) const { delete s; }
 namespace {
 
 using namespace contact_rows;
-
-// The end of the rows of the pair that row i belongs to (rows come grouped by pair).
-size_t pairEnd(const Solver& s, size_t i) {
-  size_t end = i;
-  while (end < s.rows.size() && s.rows[end].a == s.rows[i].a && s.rows[end].b == s.rows[i].b &&
-         s.rows[end].contact->surface == s.rows[i].contact->surface)
-    ++end;
-  return end;
-}
 
 Coefficients coefficientsOf(const WorldModel& model, const Contact& c) {
   const BodyConstants& a = model.bodies[c.a];
@@ -45,17 +38,6 @@ Coefficients coefficientsOf(const WorldModel& model, const Contact& c) {
 Vec3 anyPerpendicular(const Vec3& u) {
   const Vec3 other = std::abs(u.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
   return u.cross(other).normalized();
-}
-
-Axis axisOf(const SolverBody& A, const SolverBody& B, const Vec3& ra, const Vec3& rb, const Vec3& d) {
-  Axis x;
-  x.d = d;
-  x.raXd = ra.cross(d);
-  x.rbXd = rb.cross(d);
-  x.spinA = A.Iinv * x.raXd;
-  x.spinB = B.Iinv * x.rbXd;
-  x.mass = 1.0 / (A.invMass + B.invMass + x.raXd.dot(x.spinA) + x.rbXd.dot(x.spinB));
-  return x;
 }
 
 // ---- prepare ---------------------------------------------------------------------
@@ -114,52 +96,6 @@ void prepareRows(const WorldModel& model, const std::vector<Contact>& contacts, 
 
 // ---- impacts ---------------------------------------------------------------------
 
-// The touching points of one pair merged into one (centroid, mean normal): an impact
-// on a face then takes one impulse through the patch's centre instead of corner
-// impulses whose sequential order would leave a spurious spin.
-void impactRows(const Solver& s, std::vector<Row>& out) {
-  out.clear();
-  for (size_t i = 0; i < s.rows.size();) {
-    const size_t end = pairEnd(s, i);
-    Vec3 point = Vec3::Zero(), normal = Vec3::Zero();
-    int n = 0;
-    for (size_t k = i; k < end; ++k) {
-      if (s.rows[k].depth < -kTouching) continue;
-      point += s.rows[k].ra;
-      normal += s.rows[k].n.d;
-      ++n;
-    }
-    if (n > 0) {
-      Row r = s.rows[i];
-      const Vec3 X = r.ra;  // a's lever arm of the first point: shift every arm by the same
-      r.ra = point / n;
-      r.rb = r.rb + (r.ra - X);
-      r.n = axisOf(s.bodies[r.a], s.bodies[r.b], r.ra, r.rb, normal.normalized());
-      out.push_back(r);
-    }
-    i = end;
-  }
-}
-
-// The seed's impulse at one merged point, j = -(1 + xi) vrel m_eff, then a Coulomb
-// friction impulse against the slip, |jt| <= mu j (static when it stops the slip).
-void impact(Solver& s, const Row& r, double vrel, std::vector<SurfacePush>& pushes) {
-  const double j = -(1.0 + r.k.xi) * vrel * r.n.mass;
-  applyImpulse(s, r, r.n, j);
-  const bool onSurface = r.b == s.staticSlot();
-  if (onSurface) pushes.push_back({r.a, r.contact->surface, j * r.n.d});
-  const SolverBody& A = s.bodies[r.a];
-  const SolverBody& B = s.bodies[r.b];
-  const Vec3 u = B.v + B.w.cross(r.rb) - A.v - A.w.cross(r.ra);
-  const Vec3 ut = u - u.dot(r.n.d) * r.n.d;
-  if (ut.norm() < 1e-15) return;
-  const Axis t = axisOf(A, B, r.ra, r.rb, -ut.normalized());
-  const double stick = ut.norm() * t.mass;
-  const double jt = stick <= r.k.mus * j ? stick : r.k.muk * j;
-  applyImpulse(s, r, t, jt);
-  if (onSurface) pushes.back().impulse += jt * t.d;
-}
-
 // Impacts as the seed answers them, before the solve and outside its accumulated
 // impulses (which would take a bounce back): passes over the pairs while one of them
 // approaches faster than a resting body can, so that a chain of touching bodies passes
@@ -174,7 +110,7 @@ int answerImpacts(Solver& s, const ContactStep& step, std::vector<SurfacePush>& 
     return r.depth >= -kTouching && striking(r, relativeVelocity(s, r, r.n));
   });
   if (!any) return 0;
-  impactRows(s, s.impacts);
+  impactRows(s, s.impacts, s.impactPairs);
   const std::vector<Row>& rows = s.impacts;
   int passes = 0;
   for (bool struck = true; struck && passes < kMaxImpactPasses;) {
@@ -289,180 +225,6 @@ double solveRow(Solver& s, Row& r) {
   return change;
 }
 
-// ---- block solve of small islands ---------------------------------------------------
-
-// Velocity of row i along its axis x per unit impulse of row j along its axis y: an
-// entry of the Delassus matrix, from the bodies the two rows share.
-double coupling(const Solver& s, const Row& i, const Axis& x, const Row& j, const Axis& y) {
-  auto response = [&](int body, double side, const Vec3& arm) {
-    // side: +1 where body is row i's b, -1 where it is its a; arm: r x d of that side
-    const SolverBody& X = s.bodies[body];
-    double sum = 0.0;
-    if (j.a == body) sum -= X.invMass * x.d.dot(y.d) + arm.dot(y.spinA);
-    if (j.b == body) sum += X.invMass * x.d.dot(y.d) + arm.dot(y.spinB);
-    return side * sum;
-  };
-  double k = response(i.a, -1.0, x.raXd);
-  if (i.b != s.staticSlot()) k += response(i.b, 1.0, x.rbXd);
-  return k;
-}
-
-// One unknown of a block: a row's impulse along one of its axes (0: normal, 1, 2: the
-// tangents).
-const Axis& axisNumber(const Row& r, int axis) { return axis == 0 ? r.n : axis == 1 ? r.t1 : r.t2; }
-double& impulseNumber(Row& r, int axis) { return axis == 0 ? r.lambdaN : axis == 1 ? r.lambdaT1 : r.lambdaT2; }
-
-// The block's matrix (Delassus entries of its unknowns) and its residual (velocity
-// minus target along each unknown's axis).
-void assembleBlock(const Solver& s, const std::vector<std::pair<size_t, int>>& unknowns, Eigen::MatrixXd& K,
-                   Eigen::VectorXd& residual) {
-  const Eigen::Index n = static_cast<Eigen::Index>(unknowns.size());
-  for (Eigen::Index p = 0; p < n; ++p) {
-    const Row& r = s.rows[unknowns[p].first];
-    const Axis& x = axisNumber(r, unknowns[p].second);
-    residual(p) = relativeVelocity(s, r, x) - (unknowns[p].second == 0 ? r.target : 0.0);
-    for (Eigen::Index q = 0; q <= p; ++q) {
-      const Row& o = s.rows[unknowns[q].first];
-      K(p, q) = K(q, p) = coupling(s, r, x, o, axisNumber(o, unknowns[q].second));
-    }
-  }
-}
-
-// Friction outside its disc projected onto it and held there from now on. Returns
-// whether some row's was.
-bool projectFriction(Solver& s, const std::vector<size_t>& rows) {
-  bool changed = false;
-  for (size_t i : rows) {
-    Row& r = s.rows[i];
-    const double t = length(r.lambdaT1, r.lambdaT2), limit = frictionLimit(r);
-    if (t <= limit) continue;
-    const double scale = limit / t;
-    applyImpulse(s, r, r.t1, r.lambdaT1 * (scale - 1.0));
-    applyImpulse(s, r, r.t2, r.lambdaT2 * (scale - 1.0));
-    r.lambdaT1 *= scale, r.lambdaT2 *= scale;
-    r.held = changed = true;
-  }
-  return changed;
-}
-
-// The impulses of `rows` solved together, exactly: lambda_n >= 0 with v_n = target
-// wherever lambda_n > 0, and the slip stopped at every sticking point whose friction
-// stays inside its disc. An active set: rows that would pull are dropped, points whose
-// friction would leave the disc are projected onto it and held there, and the rest is
-// solved again. Sliding points keep their kinetic friction as the passes made it;
-// speculative points are left to the passes (their targets, gap / h, need not agree
-// with a touching point's 0 on the same pair, and the least-squares answer to that
-// would be huge). A face's four points are redundant (one normal and one twist too
-// many), so the matrix is made regular by 1e-9 of its diagonal: near the least-norm
-// impulses, the load shared evenly.
-void solveBlock(Solver& s, const std::vector<size_t>& rows) {
-  std::vector<size_t>& active = s.active;
-  active.clear();
-  for (size_t i : rows) {
-    Row& r = s.rows[i];
-    r.held = r.sliding;
-    if (r.depth < -kTouching) continue;
-    if (r.lambdaN > 0.0 || relativeVelocity(s, r, r.n) < r.target) active.push_back(i);
-  }
-  std::vector<std::pair<size_t, int>>& unknowns = s.unknowns;
-  constexpr int kMaxRounds = 8;
-  for (int round = 0; round <= kMaxRounds && !active.empty(); ++round) {
-    if (round == kMaxRounds)  // not settled: the normals alone, with the friction as it is
-      for (size_t i : active) s.rows[i].held = true;
-    unknowns.clear();
-    for (size_t i : active)
-      for (int axis = 0; axis < (s.rows[i].held ? 1 : 3); ++axis) unknowns.emplace_back(i, axis);
-    const Eigen::Index n = static_cast<Eigen::Index>(unknowns.size());
-    Eigen::MatrixXd& K = s.K;
-    Eigen::VectorXd& residual = s.residual;
-    Eigen::VectorXd& delta = s.delta;
-    K.resize(n, n);
-    residual.resize(n);
-    assembleBlock(s, unknowns, K, residual);
-    // regularised, then refined twice against the exact matrix: the regularisation's
-    // own error (1e-9 of a 1e6 kg box's load) would otherwise be left in the velocities
-    s.regular = K;
-    s.regular.diagonal() *= 1.0 + 1e-9;
-    s.factors.compute(s.regular);
-    delta = s.factors.solve(-residual);
-    for (int refine = 0; refine < 2; ++refine) delta += s.factors.solve(-(residual + K * delta));
-    if (!delta.allFinite()) return;
-    for (Eigen::Index p = 0; p < n; ++p) {
-      Row& r = s.rows[unknowns[p].first];
-      const int axis = unknowns[p].second;
-      double& lambda = impulseNumber(r, axis);
-      const double total = axis == 0 ? std::max(lambda + delta(p), 0.0) : lambda + delta(p);
-      applyImpulse(s, r, axisNumber(r, axis), total - lambda);
-      lambda = total;
-    }
-    const bool changed = projectFriction(s, active);
-    const size_t before = active.size();
-    active.erase(std::remove_if(active.begin(), active.end(), [&](size_t i) { return s.rows[i].lambdaN == 0.0; }),
-                 active.end());
-    if (!changed && active.size() == before) return;
-  }
-}
-
-// The ratio of the heaviest to the lightest body that the rows [begin, end) of `order`
-// touch (1 when they touch one body).
-double massRatio(const Solver& s, const std::vector<size_t>& order, size_t begin, size_t end) {
-  double lightest = 0.0, heaviest = std::numeric_limits<double>::infinity();  // in inverse masses
-  for (size_t k = begin; k < end; ++k) {
-    const Row& r = s.rows[order[k]];
-    for (int body : {r.a, r.b}) {
-      if (body == s.staticSlot()) continue;
-      lightest = std::max(lightest, s.bodies[body].invMass);
-      heaviest = std::min(heaviest, s.bodies[body].invMass);
-    }
-  }
-  return lightest / heaviest;
-}
-
-// The islands (bodies joined by rows) that the block solve may take: at most
-// kMaxBlockRows rows whose masses differ by kBlockMassRatio or more. Their rows go to
-// s.islandRows, island after island, and each island's [begin, end) to s.blocks. Rows
-// do not change within a solve, so this is found once, at the first pass that wants it.
-void findBlockIslands(Solver& s) {
-  const int statics = s.staticSlot();
-  std::vector<size_t>& order = s.islandRows;
-  order.resize(s.rows.size());
-  std::iota(order.begin(), order.end(), size_t{0});
-  s.blocks.clear();
-  if (massRatio(s, order, 0, order.size()) < kBlockMassRatio) return;  // like masses: none
-  std::vector<int>& parent = s.island;
-  parent.resize(s.bodies.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  for (const Row& r : s.rows)
-    if (r.b != statics) parent[islandRoot(parent, r.a)] = islandRoot(parent, r.b);
-  for (int& p : parent) p = islandRoot(parent, p);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t x, size_t y) { return parent[s.rows[x].a] < parent[s.rows[y].a]; });
-  for (size_t begin = 0; begin < order.size();) {
-    size_t end = begin;
-    while (end < order.size() && parent[s.rows[order[end]].a] == parent[s.rows[order[begin]].a]) ++end;
-    if (end - begin <= static_cast<size_t>(kMaxBlockRows) && massRatio(s, order, begin, end) >= kBlockMassRatio)
-      s.blocks.emplace_back(begin, end);
-    begin = end;
-  }
-}
-
-// Every island of findBlockIslands that the passes have not settled has its impulses
-// solved at once (solveBlock). Its bodies' versions change, so that its rows are
-// solved again.
-void solveBlockIslands(Solver& s) {
-  const std::vector<size_t>& order = s.islandRows;
-  std::vector<size_t>& rows = s.block;
-  for (const auto& [begin, end] : s.blocks) {
-    const bool unsettled =
-        std::any_of(order.begin() + static_cast<std::ptrdiff_t>(begin),
-                    order.begin() + static_cast<std::ptrdiff_t>(end), [&](size_t i) { return !s.rows[i].settled; });
-    if (!unsettled) continue;
-    rows.assign(order.begin() + static_cast<std::ptrdiff_t>(begin), order.begin() + static_cast<std::ptrdiff_t>(end));
-    solveBlock(s, rows);
-    for (size_t i : rows) ++s.bodies[s.rows[i].a].version, ++s.bodies[s.rows[i].b].version;
-  }
-}
-
 // ---- velocities, iterated ---------------------------------------------------------
 
 // Gauss-Seidel passes over the rows until no impulse changes a velocity by more than
@@ -481,100 +243,6 @@ void solveVelocities(Solver& s, ContactSolveReport& report) {
     if (report.iterations < kBlockAfter) continue;
     if (report.iterations == kBlockAfter) findBlockIslands(s);
     solveBlockIslands(s);
-  }
-}
-
-// ---- shock propagation -----------------------------------------------------------
-
-// Each body's level in the support graph: 1 on a surface, k + 1 on a body of level k
-// through a row that bears a load; a body supported by nothing (a stack in space) keeps
-// kUnsupported. Relaxed over the rows, forwards and backwards, until no level drops.
-constexpr int kUnsupported = std::numeric_limits<int>::max() / 2;
-
-void findLevels(Solver& s) {
-  const int statics = s.staticSlot();
-  s.level.assign(s.bodies.size(), kUnsupported);
-  s.level[statics] = 0;
-  const size_t n = s.rows.size();
-  for (bool lowered = true; lowered;) {
-    lowered = false;
-    for (size_t k = 0; k < 2 * n; ++k) {
-      const Row& r = s.rows[k < n ? k : 2 * n - 1 - k];
-      if (r.lambdaN <= 0.0) continue;
-      int &la = s.level[r.a], &lb = s.level[r.b];
-      if (lb + 1 < la) la = lb + 1, lowered = true;
-      if (r.b != statics && la + 1 < lb) lb = la + 1, lowered = true;
-    }
-  }
-}
-
-// The side of row r that the shock pass moves (+1: b, -1: a): the upper one.
-int upperSide(const Solver& s, const Row& r) { return s.level[r.a] < s.level[r.b] ? 1 : -1; }
-
-// The effective mass along x of the moving side alone, the other side held.
-double heldMass(const Solver& s, const Row& r, const Axis& x, int side) {
-  const SolverBody& M = s.bodies[side > 0 ? r.b : r.a];
-  return 1.0 / (M.invMass + (side > 0 ? x.rbXd.dot(x.spinB) : x.raXd.dot(x.spinA)));
-}
-
-// The impulse lambda along x on one side only (+lambda d on b, -lambda d on a).
-void applyOneSided(Solver& s, const Row& r, const Axis& x, int side, double lambda) {
-  if (lambda == 0.0) return;
-  const int i = side > 0 ? r.b : r.a;
-  SolverBody& M = s.bodies[i];
-  M.v += side * lambda * M.invMass * x.d;
-  M.w += side * lambda * (side > 0 ? x.spinB : x.spinA);
-}
-
-// solveRow with the lower body held: the normal (>= 0 accumulated) and the friction in
-// its disc, with the upper body's masses alone. Returns the velocity change it made.
-double solveRowHeld(Solver& s, Row& r, int side) {
-  const double mn = heldMass(s, r, r.n, side);
-  const double ln = std::max(r.lambdaN - mn * (relativeVelocity(s, r, r.n) - r.target), 0.0);
-  const double dn = ln - r.lambdaN;
-  r.lambdaN = ln;
-  applyOneSided(s, r, r.n, side, dn);
-  const double m1 = heldMass(s, r, r.t1, side), m2 = heldMass(s, r, r.t2, side);
-  double l1 = r.lambdaT1 - m1 * relativeVelocity(s, r, r.t1), l2 = r.lambdaT2 - m2 * relativeVelocity(s, r, r.t2);
-  clampToDisc(l1, l2, frictionLimit(r));
-  const double d1 = l1 - r.lambdaT1, d2 = l2 - r.lambdaT2;
-  r.lambdaT1 = l1, r.lambdaT2 = l2;
-  applyOneSided(s, r, r.t1, side, d1);
-  applyOneSided(s, r, r.t2, side, d2);
-  return std::max({std::abs(dn) / mn, std::abs(d1) / m1, std::abs(d2) / m2});
-}
-
-// Shock propagation (Guendelman, Bridson and Fedkiw, 2003): one sweep over the touching
-// rows between bodies of different levels, lowest first, each row's lower body held.
-// The passes carry a column's load down at a rate of a few levels per pass, and what
-// they leave unconverged in a tall column is a slow rocking that keeps it awake for
-// seconds (a pile of 1000 in columns of 10); here each level is made to rest on the
-// one below before the next is taken. Rows on surfaces, between bodies of one level
-// (dominoes, a row of boxes) and in unsupported stacks are left as the passes made
-// them. The impulses accumulate into the rows' and so start the next step.
-void shockPass(Solver& s) {
-  findLevels(s);
-  const int statics = s.staticSlot();
-  s.climb.clear();
-  for (size_t i = 0; i < s.rows.size(); ++i) {
-    const Row& r = s.rows[i];
-    if (r.depth >= -kTouching && r.b != statics && s.level[r.a] != s.level[r.b] &&
-        std::min(s.level[r.a], s.level[r.b]) < kUnsupported)
-      s.climb.push_back(i);
-  }
-  auto lower = [&](size_t i) { return std::min(s.level[s.rows[i].a], s.level[s.rows[i].b]); };
-  std::stable_sort(s.climb.begin(), s.climb.end(), [&](size_t x, size_t y) { return lower(x) < lower(y); });
-  for (size_t begin = 0; begin < s.climb.size();) {
-    const Row& first = s.rows[s.climb[begin]];
-    size_t end = begin;
-    while (end < s.climb.size() && s.rows[s.climb[end]].a == first.a && s.rows[s.climb[end]].b == first.b) ++end;
-    const int side = upperSide(s, first);
-    for (int pass = 0; pass < kShockPairPasses; ++pass) {
-      double change = 0.0;
-      for (size_t k = begin; k < end; ++k) change = std::max(change, solveRowHeld(s, s.rows[s.climb[k]], side));
-      if (change <= kVelocityTolerance) break;
-    }
-    begin = end;
   }
 }
 
@@ -777,7 +445,7 @@ ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Cont
   if (soft) beginSubsteps(model, step, Y, s);
   warmStart(memory, s);
   if (soft) {
-    solveSubsteps(step, s, report);
+    solveSubsteps(step, s, report, pushes);
     storeMomenta(model, s, Y);
     moveBySubsteps(s, Y);
   } else {

@@ -88,6 +88,7 @@ constexpr double kMatchDistance = 0.01;  // m: a point within this of last step'
 constexpr int kSoftSubsteps = 4;
 constexpr int kSoftSolvePasses = 2;
 constexpr int kSoftRelaxPasses = 2;
+constexpr int kSoftFreshRelaxPasses = 16;  // the first sub-step's, in a step with new points
 constexpr double kSoftFrequencyShare = 0.1;
 constexpr double kSoftDampingRatio = 10.0;
 constexpr double kSoftSlop = 5e-6;  // m

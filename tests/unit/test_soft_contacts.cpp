@@ -2,7 +2,7 @@
 // contact solver beside the default: what it is already held to. Resting and landing
 // cubes at their face-down height, a stack that stands and rests, kinetic and static
 // friction on a ramp, next to no energy gained through contact (a looser bound than the
-// default's), and the same passes for every solve.
+// default's), and a bound on the passes of every solve.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -103,17 +103,27 @@ TEST(SoftContacts, MechanicalEnergyNeverRisesThroughContact) {
   EXPECT_LT(e.end, e.start);
 }
 
-// The cost of a solve does not grow with how hard it is: every solve of a falling pile
-// takes the same passes, kSoftSubsteps x (solve + relax passes), where the default
-// solver's passes run to their tolerance (up to 60 while a tall pile settles).
-TEST(SoftContacts, EverySolveTakesTheSamePasses) {
+// The cost of a solve does not grow with how hard it is: no solve of a falling pile
+// takes more passes than kSoftSubsteps x (solve + relax passes), and the first
+// sub-step's longer relax in a step with new points, where the default solver's passes
+// run to their tolerance (up to 60 while a tall pile settles). A phase stops early only
+// once a pass changes nothing: at rest, one pass a phase.
+TEST(SoftContacts, NoSolveTakesMoreThanItsPasses) {
   using namespace rigid::contact_solver;
   Sim sim(soft(sceneOf(pile(27, 3), {floorSurface()}, kStep)));
   sim.data.profiling = true;
-  sim.run(1.0);
-  ASSERT_GT(sim.data.profile.solves, 0);
-  EXPECT_EQ(sim.data.profile.iterations,
-            sim.data.profile.solves * kSoftSubsteps * (kSoftSolvePasses + kSoftRelaxPasses));
+  const long most = kSoftSubsteps * (kSoftSolvePasses + kSoftRelaxPasses) + kSoftFreshRelaxPasses - kSoftRelaxPasses;
+  long iterations = 0, solves = 0, busiest = 0;
+  sim.run(1.0, [&] {
+    const long taken = sim.data.profile.iterations - iterations, count = sim.data.profile.solves - solves;
+    if (count > 0) busiest = std::max(busiest, taken / count);
+    iterations = sim.data.profile.iterations, solves = sim.data.profile.solves;
+  });
+  ASSERT_GT(solves, 0);
+  EXPECT_LE(busiest, most);
+  EXPECT_GT(busiest, kSoftSubsteps * 2);  // a falling pile is not solved in one pass a phase
+  std::printf("busiest solve %ld passes, %.1f per solve on average\n", busiest,
+              static_cast<double>(iterations) / static_cast<double>(solves));
 }
 
 }  // namespace

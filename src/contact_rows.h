@@ -111,6 +111,7 @@ struct ContactScratch {
   std::vector<int> level;                              // shockPass: each body's height in the support graph
   std::vector<size_t> climb;                           // shockPass: the rows between levels, lowest first
   std::vector<SubstepBody> substep;                    // soft_contacts: each body's free motion and move
+  std::vector<size_t> fresh;                           // soft_contacts: the rows new this step
   int staticSlot() const { return static_cast<int>(bodies.size()) - 1; }
 };
 

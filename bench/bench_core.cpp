@@ -191,6 +191,8 @@ struct Window {
     profile.response += after.response - before.response;
     profile.solves += after.solves - before.solves;
     profile.iterations += after.iterations - before.iterations;
+    profile.rowSolves += after.rowSolves - before.rowSolves;
+    profile.points += after.points - before.points;
     ++steps;
   }
 };
@@ -207,6 +209,10 @@ void windowCounters(benchmark::State& state, const std::string& name, const Wind
   state.counters[name + "_ns_response"] = w.profile.response / runs;
   state.counters[name + "_steps"] = static_cast<double>(w.steps) / runs;
   state.counters[name + "_solves"] = static_cast<double>(w.profile.solves) / runs;
+  state.counters[name + "_points_per_solve"] =
+      w.profile.solves ? static_cast<double>(w.profile.points) / static_cast<double>(w.profile.solves) : 0.0;
+  state.counters[name + "_row_solves_per_solve"] =
+      w.profile.solves ? static_cast<double>(w.profile.rowSolves) / static_cast<double>(w.profile.solves) : 0.0;
   state.counters[name + "_iterations_per_solve"] =
       w.profile.solves ? static_cast<double>(w.profile.iterations) / static_cast<double>(w.profile.solves) : 0.0;
 }

@@ -209,11 +209,15 @@ void noteChange(Solver& s, const Row& r, double change) {
   ++s.bodies[r.b].version;
 }
 
-// One row: normal, then friction with the new normal impulse. A row whose bodies took
-// no impulse worth noting since it was found settled is settled still, and skipped: a
-// pile converges where it moves, not everywhere. Returns the velocity change it made.
+// A row whose bodies took no impulse worth noting since it was found settled is settled
+// still, and skipped: a pile converges where it moves, not everywhere.
+bool settledStill(const Solver& s, const Row& r) {
+  return r.settled && r.versionA == s.bodies[r.a].version && r.versionB == s.bodies[r.b].version;
+}
+
+// One row: normal, then friction with the new normal impulse. Returns the velocity
+// change it made.
 double solveRow(Solver& s, Row& r) {
-  if (r.settled && r.versionA == s.bodies[r.a].version && r.versionB == s.bodies[r.b].version) return 0.0;
   const double normal = solveNormal(s, r);
   noteChange(s, r, normal);
   const double friction = solveFriction(s, r);
@@ -236,7 +240,12 @@ void solveVelocities(Solver& s, ContactSolveReport& report) {
   for (report.iterations = 0; report.iterations < kMaxVelocityIterations;) {
     const bool backwards = report.iterations % 2 == 1;
     double change = 0.0;
-    for (size_t k = 0; k < n; ++k) change = std::max(change, solveRow(s, s.rows[backwards ? n - 1 - k : k]));
+    for (size_t k = 0; k < n; ++k) {
+      Row& r = s.rows[backwards ? n - 1 - k : k];
+      if (settledStill(s, r)) continue;
+      ++report.rowSolves;
+      change = std::max(change, solveRow(s, r));
+    }
     ++report.iterations;
     report.residual = change;
     if (change <= kVelocityTolerance) break;

@@ -50,6 +50,7 @@ struct SurfacePush {
 struct ContactSolveReport {
   int points = 0;         // contact points answered
   int iterations = 0;     // velocity iterations taken
+  long rowSolves = 0;     // points solved over those iterations (a settled point skipped is not)
   double residual = 0.0;  // m/s, largest velocity change of the last iteration
   int impactPasses = 0;   // passes of the impact stage (0: no impact)
 };

@@ -132,6 +132,7 @@ int relaxFresh(Solver& s, double hs, ContactSolveReport& report) {
     for (size_t k = 0; k < n; ++k)
       change = std::max(change, softRow(s, s.rows[s.fresh[taken % 2 ? k : n - 1 - k]], hs, 1, nullptr));
     report.residual = change;
+    report.rowSolves += static_cast<long>(n);
   }
   return taken;
 }
@@ -229,6 +230,7 @@ void limitKicks(Solver& s, const ContactStep& step) {
 int passes(Solver& s, double hs, int done, const Softness* bias, int most, bool backwards, ContactSolveReport& report) {
   for (int pass = 0; pass < most; ++pass) {
     report.residual = softPass(s, hs, done, bias, backwards == (pass % 2 == 0));
+    report.rowSolves += static_cast<long>(s.rows.size());
     if (report.residual <= kVelocityTolerance) return pass + 1;
   }
   return most;

@@ -266,6 +266,8 @@ void respondToContacts(StepContext& s, std::vector<BodyState>& after, double tak
     if (s.data.profiling) {
       ++s.data.profile.solves;
       s.data.profile.iterations += report.iterations;
+      s.data.profile.rowSolves += report.rowSolves;
+      s.data.profile.points += report.points;
     }
   } else {
     (void)after;

@@ -60,6 +60,8 @@ struct StepProfile {
   long steps = 0;            // internal steps profiled
   long solves = 0;           // contact solves
   long iterations = 0;       // their velocity iterations, summed
+  long rowSolves = 0;        // the points those iterations solved, summed
+  long points = 0;           // contact points answered, summed over the solves
 };
 
 // Everything that changes during a run.

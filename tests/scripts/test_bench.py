@@ -69,6 +69,10 @@ def test_manifold_piles_falling_and_at_rest(quick):
             # it took is a figure: a settled pile may skip most of them)
             assert x["solves_per_step"] > 0, (n, w)
             assert math.isfinite(x["iterations_per_solve"]) and x["iterations_per_solve"] >= 0, (n, w)
+            # every point of a solve is solved in its first pass (none is settled yet); at
+            # rest the islands may all be asleep, with no points
+            assert measured(x["points_per_solve"]) or (w == "rest" and x["points_per_solve"] == 0), (n, w)
+            assert x["point_solves_per_solve"] >= x["points_per_solve"], (n, w)
             shares = x["shares"]
             for k in PHASES:
                 assert math.isfinite(shares[k]) and shares[k] >= 0, (n, w, k)
@@ -156,7 +160,7 @@ def test_markdown_and_plots(quick):
     manifold = text[text.index("## Manifold contact solver"):text.index("## How it is measured")]
     for heading in ("iterations per solve, at rest", "fastest body at 3 s", "| N | window |",
                     "### Beside MuJoCo", "MuJoCo fastest body at 3 s", "ratio at rest, ours/theirs",
-                    "asleep at 3 s", "**Sleep off**"):
+                    "asleep at 3 s", "**Sleep off**", "passes per point, falling"):
         assert heading in manifold, heading
     for n in PILE_N:
         assert f"| {n} | falling, 0–1 s |" in manifold and f"| {n} | at rest, 2–3 s |" in manifold

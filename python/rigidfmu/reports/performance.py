@@ -163,7 +163,10 @@ def manifold_figures(b):
                   "s_per_simulated_s": cpu / (steps * bench_scenes.PILE_STEP) if steps else math.nan,
                   "us_per_step": cpu / steps * 1e6 if steps else math.nan,
                   "shares": shares, "solves_per_step": solves / steps if steps else math.nan,
-                  "iterations_per_solve": b[f"{w}_iterations_per_solve"] if solves else math.nan}
+                  "iterations_per_solve": b[f"{w}_iterations_per_solve"] if solves else math.nan,
+                  # points answered, and points solved over the passes (a settled one skipped)
+                  "points_per_solve": b.get(f"{w}_points_per_solve", math.nan) if solves else math.nan,
+                  "point_solves_per_solve": b.get(f"{w}_row_solves_per_solve", math.nan) if solves else math.nan}
     return out
 
 
@@ -794,6 +797,19 @@ def write_manifold_section(w, r):
           f"{f['iterations_per_solve']:.1f} | {s['iterations_per_solve']:.1f} | "
           f"{m['max_overlap_state_m'] * 1e3:.2f} mm | {m['max_overlap_rest_m'] * 1e3:.2f} mm | "
           f"{m['max_speed_1s_mps']:.3g} m/s | {m['max_speed_3s_mps']:.3g} m/s | {m['asleep_3s']:.0f} of {n} |")
+    w("\nWhere the falling second's solves go: *points* is the contact points a solve answers, "
+      "*point solves* the points its passes solved (a settled point whose bodies nothing moved "
+      "is skipped), and their ratio the passes an average point took. The points grow as N; "
+      "a pile whose columns have settled takes one pass, one still settling takes them to the "
+      "tolerance or the cap (60 passes), and the taller columns of the pile of 1000 settle "
+      "later in the second: its points take more passes each, and the falling second's cost "
+      "grows faster than N.\n")
+    w("| N | points per solve, falling | point solves per solve, falling | passes per point, falling |")
+    w("|---:|---:|---:|---:|")
+    for n, m in manifold.items():
+        f = m["fall"]
+        points, solved = f["points_per_solve"], f["point_solves_per_solve"]
+        w(f"| {n} | {points:.0f} | {solved:.0f} | {solved / points if points > 0 else math.nan:.1f} |")
     incomplete = [n for n, m in manifold.items() if m["steps_ok"] < m["steps"]]
     if incomplete:
         w(f"\nA step failed in the manifold piles of {incomplete}: their windows cover the steps before it.")

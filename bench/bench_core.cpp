@@ -209,12 +209,12 @@ void windowCounters(benchmark::State& state, const std::string& name, const Wind
   state.counters[name + "_ns_response"] = w.profile.response / runs;
   state.counters[name + "_steps"] = static_cast<double>(w.steps) / runs;
   state.counters[name + "_solves"] = static_cast<double>(w.profile.solves) / runs;
-  state.counters[name + "_points_per_solve"] =
-      w.profile.solves ? static_cast<double>(w.profile.points) / static_cast<double>(w.profile.solves) : 0.0;
-  state.counters[name + "_row_solves_per_solve"] =
-      w.profile.solves ? static_cast<double>(w.profile.rowSolves) / static_cast<double>(w.profile.solves) : 0.0;
-  state.counters[name + "_iterations_per_solve"] =
-      w.profile.solves ? static_cast<double>(w.profile.iterations) / static_cast<double>(w.profile.solves) : 0.0;
+  auto perSolve = [&](long count) {
+    return w.profile.solves ? static_cast<double>(count) / static_cast<double>(w.profile.solves) : 0.0;
+  };
+  state.counters[name + "_points_per_solve"] = perSolve(w.profile.points);
+  state.counters[name + "_row_solves_per_solve"] = perSolve(w.profile.rowSolves);
+  state.counters[name + "_iterations_per_solve"] = perSolve(w.profile.iterations);
 }
 
 // The pile of BM_Pile over 3 simulated seconds from the same start. BM_Pile's first

@@ -1,6 +1,10 @@
 """The benchmark's wide pile differs from the cube-root piles in its layout only, so that
 the growth it measures from the pile of 100 is that of N at equal height (bench.py's
 "Equal height" rows)."""
+import json
+
+import pytest
+
 from rigidfmu.scenes import bench
 
 
@@ -31,3 +35,25 @@ def test_soft_pile_differs_from_the_manifold_pile_in_its_solver_only():
     soft, manifold = bench.pile_soft_scene(100), bench.pile_manifold_scene(100)
     assert soft["solver"] == dict(manifold["solver"], contacts="soft")
     assert soft["bodies"] == manifold["bodies"] and soft["surfaces"] == manifold["surfaces"]
+
+
+def test_another_tilt_pattern_moves_no_cube_and_turns_them_otherwise():
+    base, other = bench.pile_layout(1000), bench.pile_layout(1000, tilt=(1.3, 2.9))
+    assert [p for p, _ in other] == [p for p, _ in base]
+    assert sum(t != u for (_, t), (_, u) in zip(base, other)) > 990  # cube 0's tilt is the same
+    assert max(max(abs(a) for a in t) for _, t in other) <= 0.05  # as small as the default's
+
+
+def test_tilt_option_writes_the_piles_with_that_pattern(tmp_path):
+    bench.main([str(tmp_path), "--tilt", "1.3,2.9"])
+    written = json.loads((tmp_path / "pile_manifold_100.json").read_text())
+    assert written == bench.pile_manifold_scene(100, (1.3, 2.9))
+    assert written["bodies"] != bench.pile_manifold_scene(100)["bodies"]
+
+
+@pytest.mark.parametrize("tilt", ["1.3", "a,b", "nan,1", "1,2,3"])
+def test_malformed_tilt_is_refused_with_what_it_takes(tmp_path, tilt):
+    with pytest.raises(SystemExit) as refused:
+        bench.main([str(tmp_path), "--tilt", tilt])
+    assert "two finite frequencies" in str(refused.value)
+    assert not list(tmp_path.iterdir())

@@ -12,6 +12,11 @@ are written a third time naming the experimental soft sub-steps ("soft", BM_Pile
                                          DIR/pile_manifold_<N>.json,
                                          DIR/pile_soft_<N>.json and
                                          DIR/pile_wide_<N>.json
+  python -m rigidfmu.scenes.bench DIR --tilt A,B
+                                         the same with the piles' cubes tilted by another
+                                         pattern (TILT's frequencies replaced by A and B):
+                                         a pile is chaotic, and a figure read from one
+                                         pattern's fall can be checked on others
 """
 import json
 import math
@@ -28,6 +33,7 @@ PILE_STEP = 2e-3   # s: MuJoCo's default timestep, the issue's figures' dt
 EDGE = 0.1         # m, cube edge
 GAP = 0.02         # m, between neighbouring cubes at the start
 FREE_INERTIA = (1.0, 2.0, 3.0)  # kg m^2: asymmetric, so the bodies really tumble
+TILT = (1.7, 2.3)  # cube k tilted 0.05 sin(1.7 k) rad about x and 0.05 cos(2.3 k) about y
 
 
 def free_scene(n):
@@ -43,11 +49,11 @@ def free_scene(n):
     return scene(f"Free{n}", bodies, gravity=(0, 0, 0))
 
 
-def pile_layout(n, layers=None):
+def pile_layout(n, layers=None, tilt=TILT):
     """Columns on a square grid, layers upwards: (x, y, z) of each cube's centre and a
-    small tilt (rad, about x and y) so that cubes land on edges and tumble. The grid is
-    n^(1/3) a side (10 cubes: 2 x 2 columns, 100: 5 x 5 of 4, 1000: 10 x 10 of 10), or
-    sqrt(n / layers) with columns of `layers` cubes."""
+    small tilt (rad, about x and y; frequencies `tilt`) so that cubes land on edges and
+    tumble. The grid is n^(1/3) a side (10 cubes: 2 x 2 columns, 100: 5 x 5 of 4, 1000:
+    10 x 10 of 10), or sqrt(n / layers) with columns of `layers` cubes."""
     side = max(1, round(n ** (1 / 3) if layers is None else math.sqrt(n / layers)))
     per_layer = side * side
     pitch = EDGE + GAP
@@ -58,7 +64,7 @@ def pile_layout(n, layers=None):
         x = (ix - (side - 1) / 2) * pitch
         y = (iy - (side - 1) / 2) * pitch
         z = 0.5 * EDGE + GAP + layer * (pitch + GAP)
-        out.append(((x, y, z), (0.05 * math.sin(1.7 * k), 0.05 * math.cos(2.3 * k))))
+        out.append(((x, y, z), (0.05 * math.sin(tilt[0] * k), 0.05 * math.cos(tilt[1] * k))))
     return out
 
 
@@ -68,9 +74,9 @@ def quat_xy(ax, ay):
     return [cy * cx, cy * sx, sy * cx, -sy * sx]
 
 
-def pile_scene(n, layers=None):
+def pile_scene(n, layers=None, tilt=TILT):
     bodies = []
-    for k, ((x, y, z), (ax, ay)) in enumerate(pile_layout(n, layers)):
+    for k, ((x, y, z), (ax, ay)) in enumerate(pile_layout(n, layers, tilt)):
         bodies.append(body(f"c{k}", {"type": "box", "size": [EDGE] * 3}, 1.0,
                            position=[x, y, z], orientation=quat_xy(ax, ay),
                            restitution=0.0, staticFriction=0.6, kineticFriction=0.6,
@@ -78,44 +84,60 @@ def pile_scene(n, layers=None):
     return scene(f"Pile{n}", bodies, step=PILE_STEP, surfaces=[floor(0.6, 0.6, 0.0, half=5.0)])
 
 
-def pile_manifold_scene(n):
+def pile_manifold_scene(n, tilt=TILT):
     """pile_scene(n) answered by the manifold contact solver (solver.contacts): only the
     solver differs, so the two piles' figures compare the solvers and nothing else."""
-    scene = pile_scene(n)
+    scene = pile_scene(n, tilt=tilt)
     scene["name"] = f"PileManifold{n}"
     scene["solver"] = dict(scene["solver"], contacts="manifold")
     return scene
 
 
-def pile_soft_scene(n):
+def pile_soft_scene(n, tilt=TILT):
     """pile_scene(n) answered by the experimental soft sub-steps (solver.contacts "soft"):
     only the solver differs from pile_manifold_scene(n)."""
-    scene = pile_scene(n)
+    scene = pile_scene(n, tilt=tilt)
     scene["name"] = f"PileSoft{n}"
     scene["solver"] = dict(scene["solver"], contacts="soft")
     return scene
 
 
-def pile_wide_scene(n):
+def pile_wide_scene(n, tilt=TILT):
     """pile_manifold_scene(n) laid out in columns of WIDE_LAYERS cubes (the pile of
     100's height): the same cubes, floor, step and solver, only the layout differs."""
-    scene = pile_scene(n, layers=WIDE_LAYERS)
+    scene = pile_scene(n, layers=WIDE_LAYERS, tilt=tilt)
     scene["name"] = f"PileWide{n}"
     scene["solver"] = dict(scene["solver"], contacts="manifold")
     return scene
 
 
-def write(directory):
+def write(directory, tilt=TILT):
     d = pathlib.Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     for n in FREE_COUNTS:
         (d / f"free_{n}.json").write_text(json.dumps(free_scene(n)))
     for n in PILE_COUNTS:
-        (d / f"pile_{n}.json").write_text(json.dumps(pile_scene(n)))
-        (d / f"pile_manifold_{n}.json").write_text(json.dumps(pile_manifold_scene(n)))
-        (d / f"pile_soft_{n}.json").write_text(json.dumps(pile_soft_scene(n)))
-    (d / f"pile_wide_{WIDE_PILE}.json").write_text(json.dumps(pile_wide_scene(WIDE_PILE)))
+        (d / f"pile_{n}.json").write_text(json.dumps(pile_scene(n, tilt=tilt)))
+        (d / f"pile_manifold_{n}.json").write_text(json.dumps(pile_manifold_scene(n, tilt)))
+        (d / f"pile_soft_{n}.json").write_text(json.dumps(pile_soft_scene(n, tilt)))
+    (d / f"pile_wide_{WIDE_PILE}.json").write_text(json.dumps(pile_wide_scene(WIDE_PILE, tilt)))
+
+
+def main(argv):
+    """DIR [--tilt A,B] (module docstring)."""
+    args = list(argv)
+    tilt = TILT
+    if "--tilt" in args:
+        at = args.index("--tilt")
+        try:
+            tilt = tuple(float(f) for f in args[at + 1].split(","))
+        except (IndexError, ValueError):
+            tilt = ()
+        if len(tilt) != 2 or not all(math.isfinite(f) for f in tilt):
+            sys.exit("--tilt takes two finite frequencies A,B (rad per cube), e.g. --tilt 1.3,2.9")
+        del args[at:at + 2]
+    write(args[0] if args else "build/bench-scenes", tilt)
 
 
 if __name__ == "__main__":
-    write(sys.argv[1] if len(sys.argv) > 1 else "build/bench-scenes")
+    main(sys.argv[1:])

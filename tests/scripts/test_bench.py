@@ -85,6 +85,12 @@ def test_manifold_piles_falling_and_at_rest(quick):
         a = r["manifold_awake"][str(n)]
         assert a["steps_ok"] == a["steps"] and a["asleep_3s"] == 0, n
         assert measured(a["rest"]["s_per_simulated_s"]) and a["rest"]["solves_per_step"] > 0, n
+    # the falling piles again under other tilt patterns: the same solves, other falls
+    assert len(r["manifold_tilts"]) == 3
+    for tilt, piles in r["manifold_tilts"].items():
+        for n in PILE_N:
+            f = piles[str(n)]["fall"]
+            assert measured(f["points_per_solve"]) and f["point_solves_per_solve"] >= f["points_per_solve"], (tilt, n)
     labels = [row[0] for row in r["manifold_targets"]]
     assert any("at rest (2–3 s)" in x and "MuJoCo" in x for x in labels)
     assert any("penetration ≤ 1 mm" in x for x in labels)
@@ -160,7 +166,7 @@ def test_markdown_and_plots(quick):
     manifold = text[text.index("## Manifold contact solver"):text.index("## How it is measured")]
     for heading in ("iterations per solve, at rest", "fastest body at 3 s", "| N | window |",
                     "### Beside MuJoCo", "MuJoCo fastest body at 3 s", "ratio at rest, ours/theirs",
-                    "asleep at 3 s", "**Sleep off**", "passes per point, falling"):
+                    "asleep at 3 s", "**Sleep off**", "passes per point, falling", "other patterns"):
         assert heading in manifold, heading
     for n in PILE_N:
         assert f"| {n} | falling, 0–1 s |" in manifold and f"| {n} | at rest, 2–3 s |" in manifold

@@ -17,7 +17,8 @@ here is asserted; the targets are printed with PASS or MISS.
    second), with the stages' shares, the solver's iterations per solve, the overlap in
    the output state and the fastest body at 3 s; the pile of 1000 (100 in quick mode)
    at rest timed round by round with MuJoCo's at rest (Euler), the ratio its target is
-   judged on.
+   judged on; the two largest piles again with the cubes tilted by other patterns
+   (OTHER_TILTS), since a fall is chaotic and one fall's growth may be its own.
 5. Writes OUT/performance.md, OUT/performance/*.png and OUT/performance/bench.json.
 
 Times are CPU times (the machine is shared), medians of repeats.
@@ -214,6 +215,25 @@ def run_manifold(build, scenes, folder, quick):
     awake, _ = run_core(build, scenes, quick, pattern=f"^BM_PileAwake/({'|'.join(map(str, counts))})/", reps=1)
     return ({n: manifold_figures(entries[n]) for n in sorted(entries)}, interleaved,
             {k[1]: manifold_figures(b) for k, b in sorted(awake.items())})
+
+
+# Other tilt patterns (rigidfmu.scenes.bench --tilt) than the benchmark's: a falling pile
+# is chaotic, so the falling piles are run again under these to show whether a growth
+# read from one fall holds for others.
+OTHER_TILTS = ((1.3, 2.9), (0.7, 1.9), (2.1, 3.1))
+
+
+def run_tilts(build, folder, quick):
+    """BM_PileManifold's two largest piles (10 and 100 in quick mode) once under each of
+    OTHER_TILTS, their scenes written to `folder`: {"A,B": {n: figures}}."""
+    counts = bench_scenes.PILE_COUNTS[:2] if quick else bench_scenes.PILE_COUNTS[-2:]
+    out = {}
+    for tilt in OTHER_TILTS:
+        scenes = pathlib.Path(folder) / f"tilt_{tilt[0]}_{tilt[1]}"
+        bench_scenes.write(scenes, tilt)
+        core, _ = run_core(build, scenes, quick, pattern=f"^BM_PileManifold/({'|'.join(map(str, counts))})/")
+        out[f"{tilt[0]},{tilt[1]}"] = {k[1]: manifold_figures(b) for k, b in sorted(core.items())}
+    return out
 
 
 def run_wide(build, scenes, quick):
@@ -819,6 +839,16 @@ def write_manifold_section(w, r):
     if steps:
         w("\nGrowth of the points solved per solve while the piles fall (the same solves in every "
           "run, so without the timings' noise): " + "; ".join(steps) + ".")
+    tilts = []
+    for tilt, piles in (r.get("manifold_tilts") or {}).items():
+        solved = {int(n): m["fall"]["point_solves_per_solve"] for n, m in piles.items()
+                  if m["fall"]["point_solves_per_solve"] > 0}
+        tilts += [f"({tilt.replace(',', ', ')}) {solved[b] / solved[a]:.1f}x from {a} to {b} cubes"
+                  for a, b, _, _ in growth(solved)]
+    if tilts:
+        w("\nThe same growth with the cubes tilted by other patterns (`scripts/bench_scenes.py DIR "
+          f"--tilt A,B`; the benchmark's is {bench_scenes.TILT[0]}, {bench_scenes.TILT[1]}), as a fall "
+          "is chaotic: " + "; ".join(tilts) + ".")
     incomplete = [n for n, m in manifold.items() if m["steps_ok"] < m["steps"]]
     if incomplete:
         w(f"\nA step failed in the manifold piles of {incomplete}: their windows cover the steps before it.")
@@ -957,6 +987,8 @@ def main(argv=None, prog=None):
         manifold, manifold_il, manifold_awake = run_manifold(build, scenes, folder, args.quick)
         log("== the wide pile, columns as short as the pile of 100's (BM_PileWide)")
         manifold_wide = run_wide(build, scenes, args.quick)
+        log("== the falling piles under other tilt patterns (BM_PileManifold)")
+        manifold_tilts = run_tilts(build, folder, args.quick)
     if peers is None:
         log("MuJoCo: not measured (no .venv-peers; scripts/bench.sh without --quick creates it)")
     accuracy = {"T": T, "omega0": [float(x) for x in omega0], "ours": ours, "mujoco": [], "equal_accuracy": []}
@@ -975,7 +1007,7 @@ def main(argv=None, prog=None):
             "seconds": time.perf_counter() - t_start}
     report = {"free": free, "piles": piles, "fmu": fmu, "peers": peers, "interleaved": interleaved,
               "manifold": manifold, "manifold_interleaved": manifold_il, "manifold_targets": mrows,
-              "manifold_awake": manifold_awake, "manifold_wide": manifold_wide,
+              "manifold_awake": manifold_awake, "manifold_wide": manifold_wide, "manifold_tilts": manifold_tilts,
               "accuracy": accuracy, "targets": rows, "meta": meta}
     fig_dir = out / "performance"
     files = plots(fig_dir, free, piles, peers, manifold)

@@ -230,7 +230,9 @@ def run_tilts(build, folder, quick):
     out = {}
     for tilt in OTHER_TILTS:
         scenes = pathlib.Path(folder) / f"tilt_{tilt[0]}_{tilt[1]}"
-        bench_scenes.write(scenes, tilt)
+        scenes.mkdir(parents=True, exist_ok=True)
+        for n in counts:  # only the scenes this run reads
+            (scenes / f"pile_manifold_{n}.json").write_text(json.dumps(bench_scenes.pile_manifold_scene(n, tilt)))
         core, _ = run_core(build, scenes, quick, pattern=f"^BM_PileManifold/({'|'.join(map(str, counts))})/")
         out[f"{tilt[0]},{tilt[1]}"] = {k[1]: manifold_figures(b) for k, b in sorted(core.items())}
     return out
@@ -782,6 +784,14 @@ def pct(x):
     return f"{100 * x:.1f} %" if math.isfinite(x) else "–"
 
 
+def fall_work(piles):
+    """{n: points solved per solve while the pile falls} of the piles that solved any. They
+    count the passes' work exactly, without the machine's noise: the same solves each run
+    (a step is deterministic)."""
+    return {int(n): m["fall"]["point_solves_per_solve"] for n, m in piles.items()
+            if m["fall"]["point_solves_per_solve"] > 0}
+
+
 def write_manifold_section(w, r):
     manifold, peers, il = r.get("manifold") or {}, r["peers"], r.get("manifold_interleaved")
     piles = r["piles"]
@@ -830,10 +840,7 @@ def write_manifold_section(w, r):
         f = m["fall"]
         points, solved = f["points_per_solve"], f["point_solves_per_solve"]
         w(f"| {n} | {points:.0f} | {solved:.0f} | {solved / points if points > 0 else math.nan:.1f} |")
-    # the points solved count the passes' work exactly, without the machine's noise: the
-    # same solves each run (a step is deterministic)
-    work = {int(n): m["fall"]["point_solves_per_solve"] for n, m in manifold.items()
-            if m["fall"]["point_solves_per_solve"] > 0}
+    work = fall_work(manifold)
     steps = [f"{a} → {b} cubes {work[b] / work[a]:.1f}x, slope {measured:.2f} (N log N: {limit:.2f})"
              for a, b, measured, limit in growth(work)]
     if steps:
@@ -841,8 +848,7 @@ def write_manifold_section(w, r):
           "run, so without the timings' noise): " + "; ".join(steps) + ".")
     tilts = []
     for tilt, piles in (r.get("manifold_tilts") or {}).items():
-        solved = {int(n): m["fall"]["point_solves_per_solve"] for n, m in piles.items()
-                  if m["fall"]["point_solves_per_solve"] > 0}
+        solved = fall_work(piles)
         tilts += [f"({tilt.replace(',', ', ')}) {solved[b] / solved[a]:.1f}x from {a} to {b} cubes"
                   for a, b, _, _ in growth(solved)]
     if tilts:

@@ -11,6 +11,7 @@
 
 #include "collision_detection.h"
 #include "contact_solver.h"
+#include "newton_contacts.h"
 
 namespace rigid {
 namespace contact_rows {
@@ -112,6 +113,7 @@ struct ContactScratch {
   std::vector<size_t> climb;                           // shockPass: the rows between levels, lowest first
   std::vector<SubstepBody> substep;                    // soft_contacts: each body's free motion and move
   std::vector<size_t> fresh;                           // soft_contacts: the rows new this step
+  NewtonScratch newton;                                // newton_contacts: its unknowns and factors
   int staticSlot() const { return static_cast<int>(bodies.size()) - 1; }
 };
 

@@ -12,6 +12,7 @@
 #include "contact_impacts.h"
 #include "contact_rows.h"
 #include "contact_rules.h"
+#include "newton_contacts.h"
 #include "shock_propagation.h"
 #include "soft_contacts.h"
 
@@ -458,9 +459,13 @@ ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Cont
     storeMomenta(model, s, Y);
     moveBySubsteps(s, Y);
   } else {
-    applyWarmStart(s);
-    solveVelocities(s, report);
-    shockPass(s);
+    if (step.model == ContactModel::Newton) {
+      solveNewton(s, report);
+    } else {
+      applyWarmStart(s);
+      solveVelocities(s, report);
+      shockPass(s);
+    }
     storeMomenta(model, s, Y);
     correctPositions(s, step, Y);
     markLimits(s);

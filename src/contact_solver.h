@@ -1,5 +1,6 @@
 // The contact solver (solver.contacts = "manifold", the default; "soft" swaps its velocity
-// and position stages for soft_contacts.h's experimental sub-steps):
+// and position stages for soft_contacts.h's experimental sub-steps; "newton" its
+// velocities and shock stages for newton_contacts.h's experimental Newton iterations):
 // one pipeline for every touching pair, body-body and body-surface, a surface being a
 // static box of infinite mass. Each pair brings the points of its contact patch (up
 // to 4, the detector's manifold); the solver answers all of them together:
@@ -33,7 +34,7 @@ struct ContactStep {
   // Share of h times the solve's velocity change that moves the bodies: the share by
   // which the integrator moves a body under a constant force (constantForceDisplacement).
   double moveShare = 0.5;
-  ContactModel model = ContactModel::Manifold;  // the velocities' stage: passes, or soft sub-steps
+  ContactModel model = ContactModel::Manifold;  // the velocities' stage: passes, soft sub-steps or Newton
   // Y at the step's start (the soft sub-steps spread the applied forces' change of the
   // velocities over the step); none: the velocities are taken as the step's throughout.
   const std::vector<BodyState>* start = nullptr;

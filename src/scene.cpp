@@ -376,10 +376,13 @@ Scene parseScene(const std::string& text) {
     if (m.tolerance < 0.0) fail("solver.tolerance", "must be >= 0, got " + num(m.tolerance));
     const std::string contacts = s.string("contacts", "manifold");
     if (contacts == "centroid")
-      fail("solver.contacts", "\"centroid\" (the first contact model) was removed; must be \"manifold\" or \"soft\"");
-    if (contacts != "manifold" && contacts != "soft")
-      fail("solver.contacts", "must be \"manifold\" or \"soft\", got \"" + contacts + "\"");
-    m.contacts = contacts == "soft" ? ContactModel::Soft : ContactModel::Manifold;
+      fail("solver.contacts",
+           "\"centroid\" (the first contact model) was removed; must be \"manifold\", \"soft\" or \"newton\"");
+    if (contacts != "manifold" && contacts != "soft" && contacts != "newton")
+      fail("solver.contacts", "must be \"manifold\", \"soft\" or \"newton\", got \"" + contacts + "\"");
+    m.contacts = contacts == "soft"     ? ContactModel::Soft
+                 : contacts == "newton" ? ContactModel::Newton
+                                        : ContactModel::Manifold;
     m.energyGainLimit = s.number("energyGainLimit", defaults::kEnergyGainLimit);
     if (m.energyGainLimit < 0.0)
       fail("solver.energyGainLimit", "must be >= 0 (0: unchecked), got " + num(m.energyGainLimit));

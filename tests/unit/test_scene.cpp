@@ -129,17 +129,19 @@ TEST(Scene, UnknownSolverField) {
                      "sleepSpeed, sleepTime)");
 }
 
-TEST(Scene, ContactSolverIsManifoldOrSoft) {
+TEST(Scene, ContactSolverIsManifoldSoftOrNewton) {
   EXPECT_EQ(rigid::parseScene(sceneWith("", "")).model.contacts, rigid::ContactModel::Manifold);
   EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "manifold"}, )")).model.contacts,
             rigid::ContactModel::Manifold);
   EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "soft"}, )")).model.contacts,
             rigid::ContactModel::Soft);
+  EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "newton"}, )")).model.contacts,
+            rigid::ContactModel::Newton);
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "centroid"}, )"),
-                     "solver.contacts: \"centroid\" (the first contact model) was removed; must be \"manifold\" or "
-                     "\"soft\"");
+                     "solver.contacts: \"centroid\" (the first contact model) was removed; must be \"manifold\", "
+                     "\"soft\" or \"newton\"");
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "penalty"}, )"),
-                     "solver.contacts: must be \"manifold\" or \"soft\", got \"penalty\"");
+                     "solver.contacts: must be \"manifold\", \"soft\" or \"newton\", got \"penalty\"");
 }
 
 TEST(Scene, SleepRules) {

@@ -75,6 +75,12 @@ inline json sceneOf(const json& bodies, const json& surfaces, double step = 1e-3
           {"surfaces", list(surfaces)}};
 }
 
+// The scene answered by another contact solver (solver.contacts).
+inline json withContacts(json scene, const char* contacts) {
+  scene["solver"]["contacts"] = contacts;
+  return scene;
+}
+
 // One world run step by step, as the FMU runs it.
 struct Sim {
   explicit Sim(const json& scene) : model(rigid::parseScene(scene.dump()).model), data(rigid::initialData(model)) {}

@@ -15,12 +15,7 @@ namespace {
 
 using namespace test_scenes;
 
-json newton(json scene) {
-  scene["solver"]["contacts"] = "newton";
-  return scene;
-}
-
-constexpr double kStep = 2e-3;  // s, the benchmark's piles' step
+constexpr double kPileStep = 2e-3;  // s, the benchmark's piles' step
 
 json column(int n) {
   json bodies = json::array();
@@ -34,7 +29,7 @@ json column(int n) {
 // tolerance and leave the top cube jittering at ~1e-4 m/s (guide, Known limits). Once
 // the warm start holds the column, each solve takes one Newton iteration.
 TEST(NewtonContacts, ColumnOfTenRestsStillInOneIterationPerSolve) {
-  Sim sim(newton(sceneOf(column(10), {floorSurface()}, kStep)));
+  Sim sim(withContacts(sceneOf(column(10), {floorSurface()}, kPileStep), "newton"));
   sim.data.profiling = true;
   sim.run(1.0);
   const rigid::StepProfile before = sim.data.profile;
@@ -50,7 +45,7 @@ TEST(NewtonContacts, ColumnOfTenRestsStillInOneIterationPerSolve) {
 // pile of 16 lands and comes to rest: no overlap beyond 1 mm, every cube below 1 mm/s
 // after 2 s and still.
 TEST(NewtonContacts, PileOfSixteenLandsAndRests) {
-  Sim sim(newton(sceneOf(pile(16, 2), {floorSurface()}, kStep)));
+  Sim sim(withContacts(sceneOf(pile(16, 2), {floorSurface()}, kPileStep), "newton"));
   double deepest = 0.0;
   sim.run(2.0, [&] { deepest = std::max(deepest, sim.deepestOverlap()); });
   EXPECT_LT(deepest, 1e-3);

@@ -16,12 +16,16 @@
 //     alone, every body awake to the end.
 //   BM_PileSoft/<N>: BM_PileManifold answered by the experimental soft sub-steps
 //     (pile_soft_<N>.json, solver.contacts "soft"): a fixed number of passes per solve.
+//   BM_PileNewton/<N>: BM_PileManifold answered by the experimental Newton iterations
+//     (pile_newton_<N>.json, solver.contacts "newton"); its iterations per solve are
+//     Newton iterations, each a factorisation, and its point solves the points times those.
 //   BM_PileWide/<N>: BM_PileManifold on pile_wide_<N>.json, N cubes in columns of the
 //     pile of 100's height: growth from 100 cubes at equal height.
 #include <benchmark/benchmark.h>
 #include <time.h>  // clock_gettime, CLOCK_THREAD_CPUTIME_ID (POSIX)
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -305,11 +309,15 @@ int main(int argc, char** argv) {
                                    pileManifold, "pile_manifold_" + std::to_string(n) + ".json", sleep)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
-  for (int n : {10, 100, 1000})
-    benchmark::RegisterBenchmark(("BM_PileSoft/" + std::to_string(n)).c_str(), pileManifold,
-                                 "pile_soft_" + std::to_string(n) + ".json", true)
-        ->Unit(benchmark::kMillisecond)
-        ->Iterations(1);
+  for (const char* contacts : {"Soft", "Newton"})
+    for (int n : {10, 100, 1000}) {
+      std::string lower(contacts);
+      lower[0] = static_cast<char>(std::tolower(lower[0]));
+      benchmark::RegisterBenchmark(("BM_Pile" + std::string(contacts) + "/" + std::to_string(n)).c_str(), pileManifold,
+                                   "pile_" + lower + "_" + std::to_string(n) + ".json", true)
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(1);
+    }
   // the wide pile's count: bench.py's WIDE_PILE
   benchmark::RegisterBenchmark("BM_PileWide/1024", pileManifold, std::string("pile_wide_1024.json"), true)
       ->Unit(benchmark::kMillisecond)

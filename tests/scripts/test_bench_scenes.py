@@ -31,10 +31,11 @@ def test_columns_of_four_lay_out_the_pile_of_100_as_before():
     assert len({round(p[2], 9) for p, _ in bench.pile_layout(1000)}) == 10  # the tall pile: columns of 10
 
 
-def test_soft_pile_differs_from_the_manifold_pile_in_its_solver_only():
-    soft, manifold = bench.pile_soft_scene(100), bench.pile_manifold_scene(100)
-    assert soft["solver"] == dict(manifold["solver"], contacts="soft")
-    assert soft["bodies"] == manifold["bodies"] and soft["surfaces"] == manifold["surfaces"]
+@pytest.mark.parametrize("contacts", ["soft", "newton"])
+def test_experimental_piles_differ_from_the_manifold_pile_in_their_solver_only(contacts):
+    other, manifold = bench.pile_experimental_scene(100, contacts), bench.pile_manifold_scene(100)
+    assert other["solver"] == dict(manifold["solver"], contacts=contacts)
+    assert other["bodies"] == manifold["bodies"] and other["surfaces"] == manifold["surfaces"]
 
 
 def test_another_tilt_pattern_moves_no_cube_and_turns_them_otherwise():

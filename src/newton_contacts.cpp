@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "contact_rows.h"
 
@@ -19,18 +20,16 @@ using Mat63 = Eigen::Matrix<double, 6, 3>;
 
 // ---- unknowns ---------------------------------------------------------------------
 
-// One block of six unknowns (v, w) per body that some row touches, in body order.
+// One block of six unknowns (v, w) per body of the island, in the order its rows
+// reach them. (`unknown` is -1 for every body on entry and left so for the next island.)
 void numberBodies(Solver& s, NewtonScratch& n) {
-  n.unknown.assign(s.bodies.size(), -1);
   n.bodyOf.clear();
-  for (const Row& r : s.rows)
-    for (int i : {r.a, r.b})
-      if (i != s.staticSlot() && n.unknown[i] < 0) n.unknown[i] = 0;
-  for (size_t i = 0; i < n.unknown.size(); ++i) {
-    if (n.unknown[i] < 0) continue;
-    n.unknown[i] = static_cast<int>(n.bodyOf.size());
-    n.bodyOf.push_back(static_cast<int>(i));
-  }
+  for (size_t i : n.rows)
+    for (int body : {s.rows[i].a, s.rows[i].b}) {
+      if (body == s.staticSlot() || n.unknown[body] >= 0) continue;
+      n.unknown[body] = static_cast<int>(n.bodyOf.size());
+      n.bodyOf.push_back(body);
+    }
   const size_t blocks = n.bodyOf.size();
   n.mass.resize(blocks);
   n.inertia.resize(blocks);
@@ -111,8 +110,8 @@ Eigen::Matrix2d frictionCurvature(double Dt, double radius, const Eigen::Vector2
 
 // Each row's approach and slip at the iterate.
 void measure(const Solver& s, NewtonScratch& n) {
-  for (size_t i = 0; i < s.rows.size(); ++i) {
-    const Row& r = s.rows[i];
+  for (size_t i = 0; i < n.rows.size(); ++i) {
+    const Row& r = s.rows[n.rows[i]];
     n.xn[i] = along(n, r, r.n, n.u) - r.target;
     n.xt[i] = {along(n, r, r.t1, n.u), along(n, r, r.t2, n.u)};
   }
@@ -123,8 +122,8 @@ void measure(const Solver& s, NewtonScratch& n) {
 double followDiscs(const Solver& s, NewtonScratch& n) {
   measure(s, n);
   double change = 0.0;
-  for (size_t i = 0; i < s.rows.size(); ++i) {
-    const Row& r = s.rows[i];
+  for (size_t i = 0; i < n.rows.size(); ++i) {
+    const Row& r = s.rows[n.rows[i]];
     const double mu = r.sliding ? r.k.muk : r.k.mus;
     const double radius = mu * normalImpulse(n.Dn[i], n.cn[i], n.xn[i]);
     change = std::max(change, std::abs(radius - n.radius[i]) / r.t1.mass);
@@ -152,8 +151,8 @@ void gradientAndHessian(const Solver& s, NewtonScratch& n) {
   n.entries.clear();
   Mat6 between = Mat6::Zero();
   Mat63 A, B;
-  for (size_t i = 0; i < s.rows.size(); ++i) {
-    const Row& r = s.rows[i];
+  for (size_t i = 0; i < n.rows.size(); ++i) {
+    const Row& r = s.rows[n.rows[i]];
     const int a = n.unknown[r.a], b = n.unknown[r.b];
     jacobians(r, A, B);
     const Eigen::Vector2d lt = frictionImpulse(n.Dt[i], n.radius[i], n.ct[i], n.xt[i]);
@@ -167,7 +166,7 @@ void gradientAndHessian(const Solver& s, NewtonScratch& n) {
     n.g.segment<6>(6 * b) -= B * lambda;
     n.diagonal[b] += B * W * B.transpose();
     between += B * W * A.transpose();  // rows of b, columns of a
-    if (i + 1 < s.rows.size() && s.rows[i + 1].a == r.a && s.rows[i + 1].b == r.b) continue;
+    if (i + 1 < n.rows.size() && s.rows[n.rows[i + 1]].a == r.a && s.rows[n.rows[i + 1]].b == r.b) continue;
     if (b > a)
       addBlock(n, b, a, between, false);
     else
@@ -191,9 +190,9 @@ const Eigen::SparseMatrix<double>& pattern(const Solver& s, NewtonScratch& n) {
 // ---- line search -------------------------------------------------------------------
 
 // The cost's slope and curvature along d at u + alpha d.
-std::pair<double, double> slopeAlong(const Solver& s, const NewtonScratch& n, double alpha, double dMr, double dMd) {
+std::pair<double, double> slopeAlong(const NewtonScratch& n, double alpha, double dMr, double dMd) {
   double slope = dMr + alpha * dMd, curvature = dMd;
-  for (size_t i = 0; i < s.rows.size(); ++i) {
+  for (size_t i = 0; i < n.rows.size(); ++i) {
     const double xn = n.xn[i] + alpha * n.dn[i];
     const Eigen::Vector2d xt = n.xt[i] + alpha * n.dt[i];
     const double ln = normalImpulse(n.Dn[i], n.cn[i], xn);
@@ -207,14 +206,14 @@ std::pair<double, double> slopeAlong(const Solver& s, const NewtonScratch& n, do
 // The exact minimum of the convex cost along d: Newton's method on its slope, kept
 // within the bracket where the slope changes sign (the slope is piecewise linear, its
 // kinks where a point starts or stops approaching or reaches its disc's edge).
-double lineSearch(const Solver& s, NewtonScratch& n) {
+double lineSearch(NewtonScratch& n) {
   applyMass(n, n.d, n.Md);
   const double dMr = n.Md.dot(n.u - n.free), dMd = n.Md.dot(n.d);
-  const double slope0 = slopeAlong(s, n, 0.0, dMr, dMd).first;
+  const double slope0 = slopeAlong(n, 0.0, dMr, dMd).first;
   if (!(slope0 < 0.0)) return 0.0;
   double lo = 0.0, hi = std::numeric_limits<double>::infinity(), alpha = 1.0;
   for (int k = 0; k < 50; ++k) {
-    const auto [slope, curvature] = slopeAlong(s, n, alpha, dMr, dMd);
+    const auto [slope, curvature] = slopeAlong(n, alpha, dMr, dMd);
     if (std::abs(slope) <= 1e-12 * std::abs(slope0)) break;
     (slope < 0.0 ? lo : hi) = alpha;
     double next = alpha - slope / curvature;
@@ -229,8 +228,8 @@ double lineSearch(const Solver& s, NewtonScratch& n) {
 double impulseChange(const Solver& s, NewtonScratch& n) {
   measure(s, n);
   double change = 0.0;
-  for (size_t i = 0; i < s.rows.size(); ++i) {
-    const Row& r = s.rows[i];
+  for (size_t i = 0; i < n.rows.size(); ++i) {
+    const Row& r = s.rows[n.rows[i]];
     const double ln = normalImpulse(n.Dn[i], n.cn[i], n.xn[i]);
     const Eigen::Vector2d lt = frictionImpulse(n.Dt[i], n.radius[i], n.ct[i], n.xt[i]);
     change = std::max({change, std::abs(ln - n.ln[i]) / r.n.mass, (lt - n.lt[i]).norm() / r.t1.mass});
@@ -247,12 +246,12 @@ double newtonIteration(const Solver& s, NewtonScratch& n) {
   n.factors.factorize(n.H);
   if (n.factors.info() != Eigen::Success) return 0.0;
   n.d = n.factors.solve(-n.g);
-  for (size_t i = 0; i < s.rows.size(); ++i) {
-    const Row& r = s.rows[i];
+  for (size_t i = 0; i < n.rows.size(); ++i) {
+    const Row& r = s.rows[n.rows[i]];
     n.dn[i] = along(n, r, r.n, n.d);
     n.dt[i] = {along(n, r, r.t1, n.d), along(n, r, r.t2, n.d)};
   }
-  n.u += lineSearch(s, n) * n.d;
+  n.u += lineSearch(n) * n.d;
   return impulseChange(s, n);
 }
 
@@ -263,7 +262,7 @@ double minimise(const Solver& s, NewtonScratch& n, ContactSolveReport& report) {
   for (int k = 0; k < kMaxNewtonIterations; ++k) {
     change = newtonIteration(s, n);
     ++report.iterations;
-    report.rowSolves += static_cast<long>(s.rows.size());
+    report.rowSolves += static_cast<long>(n.rows.size());
     report.residual = change;
     if (change <= kNewtonTolerance) break;
   }
@@ -274,12 +273,12 @@ double minimise(const Solver& s, NewtonScratch& n, ContactSolveReport& report) {
 
 // Each row's stiffnesses and starting disc (the remembered normal impulse's).
 void prepareNewton(const Solver& s, NewtonScratch& n) {
-  const size_t rows = s.rows.size();
+  const size_t rows = n.rows.size();
   n.Dn.resize(rows), n.Dt.resize(rows), n.radius.resize(rows), n.cn.resize(rows), n.ct.resize(rows);
   n.ln.resize(rows), n.lt.resize(rows);
   n.xn.resize(rows), n.dn.resize(rows), n.xt.resize(rows), n.dt.resize(rows);
   for (size_t i = 0; i < rows; ++i) {
-    const Row& r = s.rows[i];
+    const Row& r = s.rows[n.rows[i]];
     n.Dn[i] = r.n.mass / kNewtonSoftness;
     n.Dt[i] = 0.5 * (r.t1.mass + r.t2.mass) / kNewtonSoftness;
     n.radius[i] = (r.sliding ? r.k.muk : r.k.mus) * r.lambdaN;
@@ -293,8 +292,8 @@ void prepareNewton(const Solver& s, NewtonScratch& n) {
 void startFromWarmStart(Solver& s, NewtonScratch& n) {
   numberBodies(s, n);
   readVelocities(s, n, n.free);
-  for (const Row& r : s.rows)
-    if (r.remembered) applyRowImpulse(s, r, r.lambdaN, r.lambdaT1, r.lambdaT2);
+  for (size_t i : n.rows)
+    if (s.rows[i].remembered) applyRowImpulse(s, s.rows[i], s.rows[i].lambdaN, s.rows[i].lambdaT1, s.rows[i].lambdaT2);
   readVelocities(s, n, n.u);
   prepareNewton(s, n);
   impulseChange(s, n);
@@ -310,8 +309,8 @@ void applySolution(Solver& s, NewtonScratch& n) {
     b.v = n.free.segment<3>(6 * k);
     b.w = n.free.segment<3>(6 * k + 3);
   }
-  for (size_t i = 0; i < s.rows.size(); ++i) {
-    Row& r = s.rows[i];
+  for (size_t i = 0; i < n.rows.size(); ++i) {
+    Row& r = s.rows[n.rows[i]];
     const Eigen::Vector2d lt = frictionImpulse(n.Dt[i], n.radius[i], n.ct[i], n.xt[i]);
     r.lambdaN = normalImpulse(n.Dn[i], n.cn[i], n.xn[i]);
     r.lambdaT1 = lt.x(), r.lambdaT2 = lt.y();
@@ -319,18 +318,60 @@ void applySolution(Solver& s, NewtonScratch& n) {
   }
 }
 
+// The rows grouped by island (bodies joined by rows; a surface joins none), each
+// island's rows in their order: islands[k] is the k-th island's (begin, end) in order.
+void findIslands(Solver& s, NewtonScratch& n) {
+  std::vector<int>& parent = s.island;
+  parent.resize(s.bodies.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (const Row& r : s.rows)
+    if (r.b != s.staticSlot()) parent[root(r.a)] = root(r.b);
+  n.islandRows.resize(s.rows.size());
+  std::iota(n.islandRows.begin(), n.islandRows.end(), size_t{0});
+  std::stable_sort(n.islandRows.begin(), n.islandRows.end(),
+                   [&](size_t x, size_t y) { return root(s.rows[x].a) < root(s.rows[y].a); });
+  n.islands.clear();
+  for (size_t k = 0; k < n.islandRows.size();) {
+    size_t end = k + 1;
+    while (end < n.islandRows.size() && root(s.rows[n.islandRows[end]].a) == root(s.rows[n.islandRows[k]].a)) ++end;
+    n.islands.emplace_back(k, end);
+    k = end;
+  }
+}
+
+// One island's velocities and impulses: the iterations stop where it has converged,
+// whatever the others still need.
+int solveIsland(Solver& s, NewtonScratch& n, ContactSolveReport& report) {
+  ContactSolveReport own;
+  startFromWarmStart(s, n);
+  for (int update = 0; update < kMaxDiscUpdates; ++update) {
+    const double change = minimise(s, n, own);
+    if (followDiscs(s, n) <= kVelocityTolerance && change <= kNewtonTolerance) break;
+    impulseChange(s, n);  // the impulses under the new discs, that the next iterations change
+  }
+  applySolution(s, n);
+  for (int body : n.bodyOf) n.unknown[body] = -1;
+  report.rowSolves += own.rowSolves;
+  report.residual = std::max(report.residual, own.residual);
+  return own.iterations;
+}
+
 }  // namespace
 
 void solveNewton(ContactScratch& s, ContactSolveReport& report) {
   if (s.rows.empty()) return;
   NewtonScratch& n = s.newton;
-  startFromWarmStart(s, n);
-  for (int update = 0; update < kMaxDiscUpdates; ++update) {
-    const double change = minimise(s, n, report);
-    if (followDiscs(s, n) <= kVelocityTolerance && change <= kNewtonTolerance) break;
-    impulseChange(s, n);  // the impulses under the new discs, that the next iterations change
+  n.unknown.assign(s.bodies.size(), -1);
+  findIslands(s, n);
+  for (const auto& [begin, end] : n.islands) {
+    n.rows.assign(n.islandRows.begin() + static_cast<std::ptrdiff_t>(begin),
+                  n.islandRows.begin() + static_cast<std::ptrdiff_t>(end));
+    report.iterations = std::max(report.iterations, solveIsland(s, n, report));
   }
-  applySolution(s, n);
 }
 
 }  // namespace rigid

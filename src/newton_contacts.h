@@ -20,6 +20,7 @@
 // the iterations, the cost would change under the line search).
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include <Eigen/Sparse>
@@ -42,7 +43,10 @@ constexpr double kNewtonTolerance = 1e-7;  // m/s: stop when no impulse changes 
 // The Newton stage's work buffers (part of ContactScratch): nothing in them outlives a
 // solve.
 struct NewtonScratch {
-  std::vector<int> unknown;                           // each solver body's first unknown, -1: not one
+  std::vector<size_t> islandRows;                     // the rows grouped by island
+  std::vector<std::pair<size_t, size_t>> islands;     // each island's range in islandRows
+  std::vector<size_t> rows;                           // the island being solved: its rows
+  std::vector<int> unknown;                           // each solver body's unknown block in it, -1: not one
   std::vector<int> bodyOf;                            // each unknown block's solver body
   std::vector<double> mass;                           // each unknown block's body: kg
   std::vector<Mat3> inertia;                          // and kg m^2, world frame

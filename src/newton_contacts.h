@@ -15,9 +15,11 @@
 // solves H d = -g by a sparse Cholesky factorisation of the Hessian (bodies joined by
 // points), then takes the cost's exact minimum along d: a column's load reaches its
 // foot in one iteration whatever its height, where a Gauss-Seidel pass carries it down
-// one cube. The discs' radii rho = mu lambda_n are held while Newton converges and then
-// follow the normal impulses, until they stop changing (Coulomb's disc; updated within
-// the iterations, the cost would change under the line search).
+// one cube. Each island (bodies joined by points) is solved on its own, so that the
+// iterations stop where they have converged. The discs' radii rho = mu lambda_n are
+// held while Newton converges and then follow the normal impulses, until they stop
+// changing (Coulomb's disc; updated within the iterations, the cost would change under
+// the line search).
 #pragma once
 
 #include <utility>

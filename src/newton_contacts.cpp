@@ -14,7 +14,6 @@ using namespace contact_solver;
 namespace {
 
 using namespace contact_rows;
-using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Mat63 = Eigen::Matrix<double, 6, 3>;
 

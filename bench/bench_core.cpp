@@ -25,13 +25,13 @@
 #include <time.h>  // clock_gettime, CLOCK_THREAD_CPUTIME_ID (POSIX)
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "collision_cache.h"
@@ -309,15 +309,12 @@ int main(int argc, char** argv) {
                                    pileManifold, "pile_manifold_" + std::to_string(n) + ".json", sleep)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
-  for (const char* contacts : {"Soft", "Newton"})
-    for (int n : {10, 100, 1000}) {
-      std::string lower(contacts);
-      lower[0] = static_cast<char>(std::tolower(lower[0]));
-      benchmark::RegisterBenchmark(("BM_Pile" + std::string(contacts) + "/" + std::to_string(n)).c_str(), pileManifold,
-                                   "pile_" + lower + "_" + std::to_string(n) + ".json", true)
+  for (const auto& [name, contacts] : {std::pair{"Soft", "soft"}, std::pair{"Newton", "newton"}})
+    for (int n : {10, 100, 1000})
+      benchmark::RegisterBenchmark(("BM_Pile" + std::string(name) + "/" + std::to_string(n)).c_str(), pileManifold,
+                                   "pile_" + std::string(contacts) + "_" + std::to_string(n) + ".json", true)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
-    }
   // the wide pile's count: bench.py's WIDE_PILE
   benchmark::RegisterBenchmark("BM_PileWide/1024", pileManifold, std::string("pile_wide_1024.json"), true)
       ->Unit(benchmark::kMillisecond)

@@ -179,13 +179,6 @@ void gradientAndHessian(const Solver& s, NewtonScratch& n) {
   n.H.setFromTriplets(n.entries.begin(), n.entries.end());
 }
 
-// The Hessian's pattern, the same in every iteration of a solve.
-const Eigen::SparseMatrix<double>& pattern(const Solver& s, NewtonScratch& n) {
-  measure(s, n);
-  gradientAndHessian(s, n);
-  return n.H;
-}
-
 // ---- line search -------------------------------------------------------------------
 
 // The cost's slope and curvature along d at u + alpha d.
@@ -238,10 +231,13 @@ double impulseChange(const Solver& s, NewtonScratch& n) {
 }
 
 // One Newton iteration: the step d from H d = -g, then the cost's minimum along it.
-// Returns the largest change of a row's impulses as a velocity at the point (m/s).
-double newtonIteration(const Solver& s, NewtonScratch& n) {
+// The island's first orders the factorisation (the Hessian's pattern is the same in
+// all of them). Returns the largest change of a row's impulses as a velocity at the
+// point (m/s).
+double newtonIteration(const Solver& s, NewtonScratch& n, bool first) {
   measure(s, n);
   gradientAndHessian(s, n);
+  if (first) n.factors.analyzePattern(n.H);
   n.factors.factorize(n.H);
   if (n.factors.info() != Eigen::Success) return 0.0;
   n.d = n.factors.solve(-n.g);
@@ -259,7 +255,7 @@ double newtonIteration(const Solver& s, NewtonScratch& n) {
 double minimise(const Solver& s, NewtonScratch& n, ContactSolveReport& report) {
   double change = 0.0;
   for (int k = 0; k < kMaxNewtonIterations; ++k) {
-    change = newtonIteration(s, n);
+    change = newtonIteration(s, n, report.iterations == 0);
     ++report.iterations;
     report.rowSolves += static_cast<long>(n.rows.size());
     report.residual = change;
@@ -296,7 +292,6 @@ void startFromWarmStart(Solver& s, NewtonScratch& n) {
   readVelocities(s, n, n.u);
   prepareNewton(s, n);
   impulseChange(s, n);
-  n.factors.analyzePattern(pattern(s, n));
 }
 
 // The rows' impulses at the solution onto the free velocities: the velocities and the

@@ -43,7 +43,7 @@ TEST(NewtonContacts, ColumnOfTenRestsStillInOneIterationPerSolve) {
 
 // Dropped as in the benchmark (columns of 4, each cube tilted to land on an edge), a
 // pile of 16 lands and comes to rest: no overlap beyond 1 mm, every cube below 1 mm/s
-// after 2 s and still.
+// after 2 s.
 TEST(NewtonContacts, PileOfSixteenLandsAndRests) {
   Sim sim(withContacts(sceneOf(pile(16, 2), {floorSurface()}, kPileStep), "newton"));
   double deepest = 0.0;

@@ -11,7 +11,8 @@
 //     the first second (falling) and of the third (at rest, after 2 s), each split into
 //     the stages' wall times with the solver's velocity iterations and solves; the
 //     deepest overlap in the output state, the fastest body's speed at 1 s and 3 s, and
-//     the bodies asleep at 3 s (sleep.h; the scene's default rules).
+//     the bodies asleep at 3 s (sleep.h; the scene's default rules); and the steps whose
+//     solve ran its passes to the cap, with the points they answered and solved.
 //   BM_PileAwake/<N>: BM_PileManifold with sleep off (solver.sleep false): the solver
 //     alone, every body awake to the end.
 //   BM_PileSoft/<N>: BM_PileManifold answered by the experimental soft sub-steps
@@ -35,6 +36,7 @@
 #include <vector>
 
 #include "collision_cache.h"
+#include "contact_solver.h"
 #include "scene.h"
 #include "world.h"
 
@@ -186,6 +188,9 @@ struct Window {
   double wall = 0.0;  // ns, steady_clock: the profile's clock
   rigid::StepProfile profile;
   long steps = 0;
+  // the steps whose solve ran the manifold solver's passes to their cap (some island had
+  // not settled), and the points they answered and solved
+  long stepsAtCap = 0, pointsAtCap = 0, rowSolvesAtCap = 0;
   void add(double cpuSeconds, double wallNs, const rigid::StepProfile& before, const rigid::StepProfile& after) {
     cpu += cpuSeconds;
     wall += wallNs;
@@ -198,6 +203,10 @@ struct Window {
     profile.rowSolves += after.rowSolves - before.rowSolves;
     profile.points += after.points - before.points;
     ++steps;
+    if (after.iterations - before.iterations < rigid::contact_solver::kMaxVelocityIterations) return;
+    ++stepsAtCap;
+    pointsAtCap += after.points - before.points;
+    rowSolvesAtCap += after.rowSolves - before.rowSolves;
   }
 };
 
@@ -219,6 +228,9 @@ void windowCounters(benchmark::State& state, const std::string& name, const Wind
   state.counters[name + "_points_per_solve"] = perSolve(w.profile.points);
   state.counters[name + "_row_solves_per_solve"] = perSolve(w.profile.rowSolves);
   state.counters[name + "_iterations_per_solve"] = perSolve(w.profile.iterations);
+  state.counters[name + "_steps_at_cap"] = static_cast<double>(w.stepsAtCap) / runs;
+  state.counters[name + "_points_at_cap"] = static_cast<double>(w.pointsAtCap) / runs;
+  state.counters[name + "_row_solves_at_cap"] = static_cast<double>(w.rowSolvesAtCap) / runs;
 }
 
 // The pile of BM_Pile over 3 simulated seconds from the same start. BM_Pile's first

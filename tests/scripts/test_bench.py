@@ -73,6 +73,12 @@ def test_manifold_piles_falling_and_at_rest(quick):
             # rest the islands may all be asleep, with no points
             assert measured(x["points_per_solve"]) or (w == "rest" and x["points_per_solve"] == 0), (n, w)
             assert x["point_solves_per_solve"] >= x["points_per_solve"], (n, w)
+            # the steps whose passes ran to the cap: some of the window's steps, and part of
+            # its point solves
+            assert 0 <= x["steps_at_cap"] <= x["steps"], (n, w)
+            total = x["point_solves_per_solve"] * x["solves_per_step"] * x["steps"]
+            assert 0 <= x["point_solves_at_cap"] <= total * (1 + 1e-9), (n, w)
+            assert (x["points_at_cap"] > 0) == (x["steps_at_cap"] > 0), (n, w)
             shares = x["shares"]
             for k in PHASES:
                 assert math.isfinite(shares[k]) and shares[k] >= 0, (n, w, k)
@@ -166,7 +172,8 @@ def test_markdown_and_plots(quick):
     manifold = text[text.index("## Manifold contact solver"):text.index("## How it is measured")]
     for heading in ("iterations per solve, at rest", "fastest body at 3 s", "| N | window |",
                     "### Beside MuJoCo", "MuJoCo fastest body at 3 s", "ratio at rest, ours/theirs",
-                    "asleep at 3 s", "**Sleep off**", "passes per point, falling", "other patterns"):
+                    "asleep at 3 s", "**Sleep off**", "passes per point, falling", "other patterns",
+                    "passes per point at the cap", "taken apart at the cap"):
         assert heading in manifold, heading
     for n in PILE_N:
         assert f"| {n} | falling, 0–1 s |" in manifold and f"| {n} | at rest, 2–3 s |" in manifold

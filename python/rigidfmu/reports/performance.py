@@ -167,7 +167,12 @@ def manifold_figures(b):
                   "iterations_per_solve": b[f"{w}_iterations_per_solve"] if solves else math.nan,
                   # points answered, and points solved over the passes (a settled one skipped)
                   "points_per_solve": b.get(f"{w}_points_per_solve", math.nan) if solves else math.nan,
-                  "point_solves_per_solve": b.get(f"{w}_row_solves_per_solve", math.nan) if solves else math.nan}
+                  "point_solves_per_solve": b.get(f"{w}_row_solves_per_solve", math.nan) if solves else math.nan,
+                  # the steps whose passes ran to the cap (some island not settled), with
+                  # the points they answered and solved
+                  "steps_at_cap": b.get(f"{w}_steps_at_cap", math.nan),
+                  "points_at_cap": b.get(f"{w}_points_at_cap", math.nan),
+                  "point_solves_at_cap": b.get(f"{w}_row_solves_at_cap", math.nan)}
     return out
 
 
@@ -792,6 +797,11 @@ def fall_work(piles):
             if m["fall"]["point_solves_per_solve"] > 0}
 
 
+def pile_entry(piles, n):
+    """The entry of the pile of n cubes, keyed by n or by its string (as bench.json has it)."""
+    return piles[n] if n in piles else piles[str(n)]
+
+
 def write_manifold_section(w, r):
     manifold, peers, il = r.get("manifold") or {}, r["peers"], r.get("manifold_interleaved")
     piles = r["piles"]
@@ -831,21 +841,42 @@ def write_manifold_section(w, r):
       "*point solves* the points its passes solved (a settled point whose bodies nothing moved "
       "is skipped), and their ratio the passes an average point took. The points grow as N; "
       "a pile whose columns have settled takes one pass, one still settling takes them to the "
-      "tolerance or the cap (60 passes), and the taller columns of the pile of 1000 settle "
-      "later in the second: its points take more passes each, and the falling second's cost "
-      "grows faster than N.\n")
-    w("| N | points per solve, falling | point solves per solve, falling | passes per point, falling |")
-    w("|---:|---:|---:|---:|")
+      "tolerance or the cap (60 passes). *At the cap*: the steps whose passes ran to the cap "
+      "(an island still settling), the points those steps answered and the passes each took. "
+      "Nearly all of the second's work is in them. From 100 to 1000 cubes the passes per point "
+      "there hardly grow (the cap binds both piles); what grows faster than N is how many steps "
+      "a pile spends there: the columns of 10 of the pile of 1000 land later (the last cube at "
+      "about 0.33 s, against 0.2 s) and settle later than the columns of 4.\n")
+    w("| N | points per solve, falling | point solves per solve, falling | passes per point, falling | "
+      "steps at the cap, of the second's | points per step at the cap | passes per point at the cap | "
+      "share of the point solves at the cap |")
+    w("|---:|---:|---:|---:|---:|---:|---:|---:|")
     for n, m in manifold.items():
         f = m["fall"]
         points, solved = f["points_per_solve"], f["point_solves_per_solve"]
-        w(f"| {n} | {points:.0f} | {solved:.0f} | {solved / points if points > 0 else math.nan:.1f} |")
+        capped, at_cap, solved_at_cap = f["steps_at_cap"], f["points_at_cap"], f["point_solves_at_cap"]
+        w(f"| {n} | {points:.0f} | {solved:.0f} | {solved / points if points > 0 else math.nan:.1f} | "
+          f"{capped:.0f} of {f['steps']:.0f} | {at_cap / capped if capped > 0 else math.nan:.0f} | "
+          f"{solved_at_cap / at_cap if at_cap > 0 else math.nan:.1f} | "
+          f"{pct(solved_at_cap / (solved * f['solves_per_step'] * f['steps'])) if solved > 0 else '–'} |")
     work = fall_work(manifold)
     steps = [f"{a} → {b} cubes {work[b] / work[a]:.1f}x, slope {measured:.2f} (N log N: {limit:.2f})"
              for a, b, measured, limit in growth(work)]
     if steps:
         w("\nGrowth of the points solved per solve while the piles fall (the same solves in every "
           "run, so without the timings' noise): " + "; ".join(steps) + ".")
+        parts = []
+        for a, b, _, _ in growth(work):
+            fa, fb = (pile_entry(manifold, x)["fall"] for x in (a, b))
+            if min(fa["steps_at_cap"], fb["steps_at_cap"], fa["points_at_cap"], fb["points_at_cap"]) > 0:
+                per_step = [f["points_at_cap"] / f["steps_at_cap"] for f in (fa, fb)]
+                passes = [f["point_solves_at_cap"] / f["points_at_cap"] for f in (fa, fb)]
+                parts.append(f"{a} → {b} cubes: steps at the cap {fb['steps_at_cap'] / fa['steps_at_cap']:.2f}x, "
+                             f"points per step there {per_step[1] / per_step[0]:.2f}x, passes per point "
+                             f"there {passes[1] / passes[0]:.2f}x")
+        if parts:
+            w("\nThat growth, taken apart at the cap (the three multiply to nearly all of it): "
+              + "; ".join(parts) + ".")
     tilts = []
     for tilt, piles in (r.get("manifold_tilts") or {}).items():
         solved = fall_work(piles)

@@ -189,7 +189,8 @@ struct Window {
   rigid::StepProfile profile;
   long steps = 0;
   // the steps whose solve ran the manifold solver's passes to their cap (some island had
-  // not settled), and the points they answered and solved
+  // not settled), and the points they answered and solved (the soft and Newton piles
+  // count other iterations: the report reads these of the manifold piles only)
   long stepsAtCap = 0, pointsAtCap = 0, rowSolvesAtCap = 0;
   void add(double cpuSeconds, double wallNs, const rigid::StepProfile& before, const rigid::StepProfile& after) {
     cpu += cpuSeconds;

@@ -6,8 +6,6 @@
 
 #include <Eigen/Dense>
 
-#include "islands.h"
-
 namespace rigid {
 namespace contact_rows {
 
@@ -147,27 +145,18 @@ double massRatio(const Solver& s, const std::vector<size_t>& order, size_t begin
 // s.islandRows, island after island, and each island's [begin, end) to s.blocks. Rows
 // do not change within a solve, so this is found once, at the first pass that wants it.
 void findBlockIslands(Solver& s) {
-  const int statics = s.staticSlot();
   std::vector<size_t>& order = s.islandRows;
   order.resize(s.rows.size());
   std::iota(order.begin(), order.end(), size_t{0});
   s.blocks.clear();
   if (massRatio(s, order, 0, order.size()) < kBlockMassRatio) return;  // like masses: none
-  std::vector<int>& parent = s.island;
-  parent.resize(s.bodies.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  for (const Row& r : s.rows)
-    if (r.b != statics) parent[islandRoot(parent, r.a)] = islandRoot(parent, r.b);
-  for (int& p : parent) p = islandRoot(parent, p);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t x, size_t y) { return parent[s.rows[x].a] < parent[s.rows[y].a]; });
-  for (size_t begin = 0; begin < order.size();) {
-    size_t end = begin;
-    while (end < order.size() && parent[s.rows[order[end]].a] == parent[s.rows[order[begin]].a]) ++end;
-    if (end - begin <= static_cast<size_t>(kMaxBlockRows) && massRatio(s, order, begin, end) >= kBlockMassRatio)
-      s.blocks.emplace_back(begin, end);
-    begin = end;
-  }
+  groupRowsByIsland(s, order, s.blocks);
+  s.blocks.erase(std::remove_if(s.blocks.begin(), s.blocks.end(),
+                                [&](const std::pair<size_t, size_t>& b) {
+                                  return b.second - b.first > static_cast<size_t>(kMaxBlockRows) ||
+                                         massRatio(s, order, b.first, b.second) < kBlockMassRatio;
+                                }),
+                 s.blocks.end());
 }
 
 // Every island of findBlockIslands that the passes have not settled has its impulses

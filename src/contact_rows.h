@@ -3,7 +3,9 @@
 // share. Internal to the two; nothing outside them sees these types.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <utility>
 #include <vector>
 
@@ -11,6 +13,7 @@
 
 #include "collision_detection.h"
 #include "contact_solver.h"
+#include "islands.h"
 #include "newton_contacts.h"
 
 namespace rigid {
@@ -100,7 +103,7 @@ struct ContactScratch {
   std::vector<size_t> deep;                            // rows overlapping by more than the slop
   std::vector<double> moveScale;                       // limitMoves: each body's share of the solve's move
   std::vector<char> used;                              // warmStart: memory points already matched
-  std::vector<int> island;                             // findBlockIslands: each body's island (union-find)
+  std::vector<int> island;                             // groupRowsByIsland: each body's island (union-find)
   std::vector<size_t> islandRows;                      // findBlockIslands: rows grouped by island
   std::vector<std::pair<size_t, size_t>> blocks;       // findBlockIslands: islands for solveBlock
   std::vector<size_t> block;                           // solveBlockIslands: one island's rows
@@ -132,6 +135,29 @@ inline size_t pairEnd(const Solver& s, size_t i) {
          s.rows[end].contact->surface == s.rows[i].contact->surface)
     ++end;
   return end;
+}
+
+// The rows grouped by island (bodies joined by rows; a surface joins none), by
+// union-find in s.island: `order` takes every row index, island after island, each
+// island's rows in their order, and `islands` each island's [begin, end) in `order`.
+inline void groupRowsByIsland(Solver& s, std::vector<size_t>& order, std::vector<std::pair<size_t, size_t>>& islands) {
+  std::vector<int>& parent = s.island;
+  parent.resize(s.bodies.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const Row& r : s.rows)
+    if (r.b != s.staticSlot()) parent[islandRoot(parent, r.a)] = islandRoot(parent, r.b);
+  for (int& p : parent) p = islandRoot(parent, p);
+  order.resize(s.rows.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t x, size_t y) { return parent[s.rows[x].a] < parent[s.rows[y].a]; });
+  islands.clear();
+  for (size_t begin = 0; begin < order.size();) {
+    size_t end = begin + 1;
+    while (end < order.size() && parent[s.rows[order[end]].a] == parent[s.rows[order[begin]].a]) ++end;
+    islands.emplace_back(begin, end);
+    begin = end;
+  }
 }
 
 inline Axis axisOf(const SolverBody& A, const SolverBody& B, const Vec3& ra, const Vec3& rb, const Vec3& d) {

@@ -1,5 +1,6 @@
-// Islands of bodies joined by contacts, by union-find: the contact solver's block
-// islands and the sleeping islands (sleep.h) are found the same way.
+// Islands of bodies joined by contacts, by union-find: the contact solver's islands
+// (contact_rows.h, groupRowsByIsland) and the sleeping islands (sleep.h) are found the
+// same way.
 #pragma once
 
 #include <vector>

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 #include "contact_rows.h"
 
@@ -312,31 +311,6 @@ void applySolution(Solver& s, NewtonScratch& n) {
   }
 }
 
-// The rows grouped by island (bodies joined by rows; a surface joins none), each
-// island's rows in their order: islands[k] is the k-th island's (begin, end) in order.
-void findIslands(Solver& s, NewtonScratch& n) {
-  std::vector<int>& parent = s.island;
-  parent.resize(s.bodies.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&](int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  for (const Row& r : s.rows)
-    if (r.b != s.staticSlot()) parent[root(r.a)] = root(r.b);
-  n.islandRows.resize(s.rows.size());
-  std::iota(n.islandRows.begin(), n.islandRows.end(), size_t{0});
-  std::stable_sort(n.islandRows.begin(), n.islandRows.end(),
-                   [&](size_t x, size_t y) { return root(s.rows[x].a) < root(s.rows[y].a); });
-  n.islands.clear();
-  for (size_t k = 0; k < n.islandRows.size();) {
-    size_t end = k + 1;
-    while (end < n.islandRows.size() && root(s.rows[n.islandRows[end]].a) == root(s.rows[n.islandRows[k]].a)) ++end;
-    n.islands.emplace_back(k, end);
-    k = end;
-  }
-}
-
 // One island's velocities and impulses: the iterations stop where it has converged,
 // whatever the others still need.
 int solveIsland(Solver& s, NewtonScratch& n, ContactSolveReport& report) {
@@ -360,7 +334,7 @@ void solveNewton(ContactScratch& s, ContactSolveReport& report) {
   if (s.rows.empty()) return;
   NewtonScratch& n = s.newton;
   n.unknown.assign(s.bodies.size(), -1);
-  findIslands(s, n);
+  groupRowsByIsland(s, n.islandRows, n.islands);
   for (const auto& [begin, end] : n.islands) {
     n.rows.assign(n.islandRows.begin() + static_cast<std::ptrdiff_t>(begin),
                   n.islandRows.begin() + static_cast<std::ptrdiff_t>(end));

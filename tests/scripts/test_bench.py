@@ -101,6 +101,12 @@ def test_manifold_piles_falling_and_at_rest(quick):
     assert any("at rest (2–3 s)" in x and "MuJoCo" in x for x in labels)
     assert any("penetration ≤ 1 mm" in x for x in labels)
     assert any(x.startswith("manifold at rest: growth") for x in labels)
+    # growth is a target only at equal outcome: the cube-root piles' falling growth and
+    # the sleep-off figures are checks beside the targets
+    assert not any("falling" in x and not x.startswith("equal height") for x in labels)
+    checks = [row[0] for row in r["manifold_checks"]]
+    assert any(x.startswith("manifold falling, cube-root piles: growth 10 → 100") for x in checks)
+    assert any(x.startswith("sleep off, at rest: growth") for x in checks)
 
 
 def test_fmu_costs_and_overhead(quick):
@@ -177,8 +183,9 @@ def test_markdown_and_plots(quick):
         assert heading in manifold, heading
     for n in PILE_N:
         assert f"| {n} | falling, 0–1 s |" in manifold and f"| {n} | at rest, 2–3 s |" in manifold
-    for label, _, _ in r["manifold_targets"]:
+    for label, _, _ in r["manifold_targets"] + r["manifold_checks"]:
         assert f"| {label} |" in manifold
+    assert "| check (not a target) | measured | |" in manifold
     if HAVE_PEERS:
         assert "**Interleaved, manifold pile of 100 at rest.**" in manifold
     else:
@@ -187,7 +194,7 @@ def test_markdown_and_plots(quick):
     for m in METHODS:
         assert f"| `{m}` |" in text
     assert "targets (figures, never asserted)" in proc.stdout
-    statuses = [row[2] for row in r["targets"] + r["manifold_targets"]]
+    statuses = [row[2] for row in r["targets"] + r["manifold_targets"] + r["manifold_checks"]]
     assert statuses and set(statuses) <= {"PASS", "MISS", "–"}
     if HAVE_PEERS:
         assert "ratio ours/theirs" in text

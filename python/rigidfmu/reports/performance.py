@@ -486,11 +486,13 @@ def equal_height_targets(manifold, wide):
     return rows
 
 
-def manifold_targets(manifold, peers, interleaved, awake=None):
+def manifold_targets(manifold, peers, interleaved):
     """The manifold solver's targets: its pile of 1000 at rest against MuJoCo's default
     at rest (judged on the interleaved rounds), the overlap in the output state over the
-    3 s, and the growth of a step's time, falling and at rest; then the same pile with
-    sleep off against the interleaved rounds' MuJoCo figure (the solver alone)."""
+    3 s, and the growth of a step's time at rest. Growth is judged where the piles of 100
+    and 1000 are at the same outcome: at rest here, and falling in columns of one height
+    in equal_height_targets. (The cube-root piles' falling seconds are different events,
+    columns of 4 and of 10: manifold_checks.)"""
     rows = []
     label = "manifold, pile of 1000 at rest (2–3 s): time per simulated second ≤ 0.5x MuJoCo's (Euler, at rest)"
     if interleaved and interleaved["n"] == 1000:
@@ -507,11 +509,24 @@ def manifold_targets(manifold, peers, interleaved, awake=None):
                      f"{m['max_overlap_state_m'] * 1e3:.2f} mm in the output state over 0–3 s "
                      f"({m['max_overlap_rest_m'] * 1e3:.2f} mm at rest, 2–3 s)",
                      "PASS" if m["max_overlap_state_m"] <= PENETRATION_TARGET else "MISS"))
-    for w, name in (("fall", "falling"), ("rest", "at rest")):
-        pts = {n: m[w]["us_per_step"] for n, m in manifold.items() if math.isfinite(m[w]["us_per_step"])}
-        for a, b, s, limit in growth(pts):
-            rows.append((f"manifold {name}: growth {a} → {b} no faster than N log N (slope ≤ {limit:.2f})",
-                         f"slope {s:.2f}", "PASS" if s <= limit else "MISS"))
+    rows += growth_rows(manifold, "rest", "manifold at rest")
+    return rows
+
+
+def growth_rows(piles, window, label):
+    """One row per pair of consecutive pile sizes: the growth of a step's time in the
+    window ("fall" or "rest") against N log N's."""
+    pts = {n: m[window]["us_per_step"] for n, m in piles.items() if math.isfinite(m[window]["us_per_step"])}
+    return [(f"{label}: growth {a} → {b} no faster than N log N (slope ≤ {limit:.2f})", f"slope {s:.2f}",
+             "PASS" if s <= limit else "MISS") for a, b, s, limit in growth(pts)]
+
+
+def manifold_checks(manifold, interleaved, awake=None):
+    """Figures held to the targets' bounds that are not targets: the cube-root piles'
+    falling growth (from columns of 4 to columns of 10, whose tops land at 1.6 and 2.7
+    m/s: different falls, not more of one), and the piles with sleep off (the solver
+    alone) against the interleaved rounds' MuJoCo figure."""
+    rows = growth_rows(manifold, "fall", "manifold falling, cube-root piles")
     if awake and interleaved and interleaved["n"] in awake:
         n = interleaved["n"]
         theirs = statistics.median(r["mujoco"] for r in interleaved["rounds"])
@@ -519,10 +534,8 @@ def manifold_targets(manifold, peers, interleaved, awake=None):
         rows.append((f"sleep off (the solver alone), pile of {n} at rest: ≤ 0.5x MuJoCo's",
                      f"ratio {ratio:.2f} ({fmt_s(awake[n]['rest']['s_per_simulated_s'])} against the rounds' "
                      f"median {fmt_s(theirs)}; one run)", "PASS" if ratio <= PILE_RATIO_TARGET else "MISS"))
-        pts = {k: a["rest"]["us_per_step"] for k, a in awake.items() if math.isfinite(a["rest"]["us_per_step"])}
-        for a, b, s, limit in growth(pts):
-            rows.append((f"sleep off, at rest: growth {a} → {b} no faster than N log N (slope ≤ {limit:.2f})",
-                         f"slope {s:.2f}", "PASS" if s <= limit else "MISS"))
+    if awake:
+        rows += growth_rows(awake, "rest", "sleep off, at rest")
     return rows
 
 
@@ -824,6 +837,20 @@ def write_manifold_section(w, r):
     for label, value, status in r["manifold_targets"]:
         w(f"| {label} | {value} | **{status}** |")
     w("")
+    checks = r.get("manifold_checks") or []
+    if checks:
+        w("The growth targets compare piles at the same outcome: at rest (2–3 s, every pile still), and "
+          f"falling in columns of one height (*equal height*, columns of {bench_scenes.WIDE_LAYERS} at 100 "
+          "and at 1024 cubes: the same fall, ten times over). The cube-root piles' falling seconds are "
+          "different falls: the pile of 100 stands in columns of 4, the pile of 1000 in columns of 10, "
+          "whose top cube drops 0.38 m onto its column (2.7 m/s at landing, against 0.14 m and 1.7 m/s), "
+          "lands later and rocks longer. A solver that works until the contacts are solved pays for "
+          "that longer settling (the decomposition below), so their growth is printed beside the "
+          "targets, held to the same bound, with the solver's figures with sleep off:\n")
+        w("| check (not a target) | measured | |\n|---|---|---|")
+        for label, value, status in checks:
+            w(f"| {label} | {value} | **{status}** |")
+        w("")
     w("| N | falling: per step | falling: per simulated second | at rest: per step | at rest: per "
       "simulated second | BM_Pile per simulated second, falling | iterations per solve, "
       "falling | iterations per solve, at rest | max overlap in the output state, 0–3 s | at rest, "
@@ -1035,8 +1062,8 @@ def main(argv=None, prog=None):
         accuracy["equal_accuracy"] = equal_accuracy(ours, [m for m in peers["free_one"] if m["integrator"] == "RK4"])
 
     rows = targets(free, piles, peers, interleaved)
-    mrows = manifold_targets(manifold, peers, manifold_il, manifold_awake) + equal_height_targets(manifold,
-                                                                                                   manifold_wide)
+    mrows = manifold_targets(manifold, peers, manifold_il) + equal_height_targets(manifold, manifold_wide)
+    mchecks = manifold_checks(manifold, manifold_il, manifold_awake)
     meta = {"quick": args.quick, "date": time.strftime("%Y-%m-%d %H:%M %Z"), "cpu": cpu_name(),
             "python": f"Python {platform.python_version()}", "repeats": repeats,
             "benchmark_library": f"1.7 ({context.get('library_build_type', '?')} build, Debian)",
@@ -1044,6 +1071,7 @@ def main(argv=None, prog=None):
             "seconds": time.perf_counter() - t_start}
     report = {"free": free, "piles": piles, "fmu": fmu, "peers": peers, "interleaved": interleaved,
               "manifold": manifold, "manifold_interleaved": manifold_il, "manifold_targets": mrows,
+              "manifold_checks": mchecks,
               "manifold_awake": manifold_awake, "manifold_wide": manifold_wide, "manifold_tilts": manifold_tilts,
               "accuracy": accuracy, "targets": rows, "meta": meta}
     fig_dir = out / "performance"
@@ -1053,6 +1081,9 @@ def main(argv=None, prog=None):
 
     log("\n== targets (figures, never asserted)")
     for label, value, status in rows + mrows:
+        log(f"  {status:5s} {label}: {value}")
+    log("== checks beside them (figures, not targets)")
+    for label, value, status in mchecks:
         log(f"  {status:5s} {label}: {value}")
     if peers:
         mj = {m["n"]: m for m in peers["piles"] if m["integrator"] == "Euler"}

@@ -523,7 +523,7 @@ def growth_rows(piles, window, label):
 
 def manifold_checks(manifold, interleaved, awake=None):
     """Figures held to the targets' bounds that are not targets: the cube-root piles'
-    falling growth (from columns of 4 to columns of 10, whose tops land at 1.6 and 2.7
+    falling growth (from columns of 4 to columns of 10, whose tops land at 1.7 and 2.7
     m/s: different falls, not more of one), and the piles with sleep off (the solver
     alone) against the interleaved rounds' MuJoCo figure."""
     rows = growth_rows(manifold, "fall", "manifold falling, cube-root piles")

@@ -11,6 +11,7 @@
 
 #include <Eigen/Dense>
 
+#include "coarse_correction.h"
 #include "collision_detection.h"
 #include "contact_solver.h"
 #include "islands.h"
@@ -117,6 +118,7 @@ struct ContactScratch {
   std::vector<SubstepBody> substep;                    // soft_contacts: each body's free motion and move
   std::vector<size_t> fresh;                           // soft_contacts: the rows new this step
   NewtonScratch newton;                                // newton_contacts: its unknowns and factors
+  contact_rows::CoarseScratch coarse;                  // coarse_correction: its islands, pairs and factors
   int staticSlot() const { return static_cast<int>(bodies.size()) - 1; }
 };
 

@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "block_solve.h"
+#include "coarse_correction.h"
 #include "contact_impacts.h"
 #include "contact_rows.h"
 #include "contact_rules.h"
@@ -463,6 +464,7 @@ ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Cont
       solveNewton(s, report);
     } else {
       applyWarmStart(s);
+      coarseCorrection(s, step.restingSpeed);
       solveVelocities(s, report);
       shockPass(s);
     }

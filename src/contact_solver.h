@@ -75,6 +75,17 @@ constexpr double kBlockMassRatio = 100.0;
 // row's lower body is held as if infinitely heavy, each pair's points taken this many
 // times at most (a tall column's residual rocking is the slowest mode of the passes).
 constexpr int kShockPairPasses = 4;
+// Coarse correction, before the passes: in each island of at most kMaxCoarsePairs
+// touching pairs whose pairs all move slower than a resting body can (the impacts'
+// threshold, 2|g|h), every pair that sticks with a load is welded and the wrenches that
+// stop them all are solved at once (coarse_correction.h). Faster islands (a landing, a
+// toppling column) are left to the passes: their pairs are about to part or slide.
+constexpr int kMaxCoarsePairs = 64;
+constexpr double kCoarseStill = 1e-7;        // m/s: an island whose pairs all move slower rests already
+constexpr double kCoarseRegular = 1e-9;      // share of its diagonal added to the wrenches' matrix
+constexpr double kCoarseSpread = 1e-12;      // m^2: points closer together carry no moment
+constexpr double kCoarseSpreadRatio = 1e-3;  // a direction of the points' spread below this share carries none
+
 constexpr int kPositionIterations = 8;   // split-impulse passes
 constexpr double kSlop = 1e-4;           // m, overlap left alone (a resting body's seat)
 constexpr double kBaumgarte = 0.2;       // share of the overlap beyond the slop removed per step

@@ -161,6 +161,14 @@ inline double driftAfterSettling(Sim& sim, double settle, double seconds) {
 
 constexpr double kEdge = 0.1;  // m, the cubes of stacks and piles
 
+// n cubes set down in a column on the floor, each face on the one below.
+inline json column(int n) {
+  json bodies = json::array();
+  for (int i = 0; i < n; ++i)
+    bodies.push_back(box("c" + std::to_string(i), Vec3::Constant(kEdge), Vec3(0, 0, kEdge * (0.5 + i))));
+  return bodies;
+}
+
 // The benchmark's pile (scripts/bench_scenes.py): columns of 0.1 m cubes 2 cm apart on
 // a square grid, layers upwards, each tilted a little so that they land on edges.
 inline json pile(int n, int side) {

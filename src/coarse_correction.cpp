@@ -95,31 +95,30 @@ Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> relativeMotion(const Solver& s
   return p.basis.leftCols(p.m).transpose() * xi;
 }
 
-// Whether the island is to be corrected: at most kMaxCoarsePairs touching pairs, two
-// or more of them weldable, none of those faster than restingSpeed and not all still.
-bool correctable(const Solver& s, const std::vector<size_t>& order, size_t begin, size_t end, double restingSpeed) {
-  int touching = 0, welded = 0;
+// The island's weldable pairs' rows into c.welds; whether it is to be corrected: at
+// most kMaxCoarsePairs touching pairs, two or more of them weldable, none of those
+// faster than restingSpeed and not all still.
+bool findWelds(const Solver& s, size_t begin, size_t end, double restingSpeed, CoarseScratch& c) {
+  c.welds.clear();
+  int touching = 0;
   double fastest = 0.0;
   for (size_t k = begin; k < end;) {
-    const size_t first = order[k], last = pairEnd(s, first);
+    const size_t first = c.islandRows[k], last = pairEnd(s, first);
     k += last - first;  // a pair's rows are consecutive, in the island's order too
     if (s.rows[first].depth < -kTouching) continue;
     if (++touching > kMaxCoarsePairs) return false;
     if (!weldable(s, first, last)) continue;
-    ++welded;
+    c.welds.emplace_back(first, last);
     fastest = std::max(fastest, slipSpeed(s, first, last));
   }
-  return welded >= 2 && fastest <= restingSpeed && fastest > kCoarseStill;
+  return c.welds.size() >= 2 && fastest <= restingSpeed && fastest > kCoarseStill;
 }
 
-// The island's weldable pairs into c.pairs, their unknowns numbered.
-void weldIsland(const Solver& s, size_t begin, size_t end, CoarseScratch& c) {
+// The welded pairs of c.welds into c.pairs, their unknowns numbered.
+void weldPairs(const Solver& s, CoarseScratch& c) {
   c.pairs.clear();
   int unknowns = 0;
-  for (size_t k = begin; k < end;) {
-    const size_t first = c.islandRows[k], last = pairEnd(s, first);
-    k += last - first;
-    if (s.rows[first].depth < -kTouching || !weldable(s, first, last)) continue;
+  for (const auto& [first, last] : c.welds) {
     c.pairs.push_back(pairOf(s, first, last));
     c.pairs.back().offset = unknowns;
     unknowns += c.pairs.back().m;
@@ -206,8 +205,8 @@ void coarseCorrection(Solver& s, double restingSpeed) {
   CoarseScratch& c = s.coarse;
   groupRowsByIsland(s, c.islandRows, c.islands);
   for (const auto& [begin, end] : c.islands) {
-    if (!correctable(s, c.islandRows, begin, end, restingSpeed)) continue;
-    weldIsland(s, begin, end, c);
+    if (!findWelds(s, begin, end, restingSpeed, c)) continue;
+    weldPairs(s, c);
     correctIsland(s, c);
   }
 }

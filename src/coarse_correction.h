@@ -40,7 +40,8 @@ struct CoarsePair {
 struct CoarseScratch {
   std::vector<size_t> islandRows;                         // the rows grouped by island
   std::vector<std::pair<size_t, size_t>> islands;         // each island's range in islandRows
-  std::vector<CoarsePair> pairs;                          // one island's welded pairs
+  std::vector<std::pair<size_t, size_t>> welds;           // one island's weldable pairs: their rows
+  std::vector<CoarsePair> pairs;                          // and those pairs, welded
   std::vector<std::vector<std::pair<int, int>>> pairsOf;  // each body's welded pairs, with its side (+1: b)
   std::vector<int> bodies;                                // the island's bodies that welded pairs join
   std::vector<Eigen::Triplet<double>> entries;

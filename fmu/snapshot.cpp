@@ -56,7 +56,7 @@ std::string readContactMemory(Reader& r, Snapshot& out, bool& ok) {
     int32_t a = 0, b = 0, surface = 0;
     uint8_t sliding = 0;
     ok = ok && r.get(a) && r.get(b) && r.get(surface) && r.get(m.localA) && r.get(m.normalImpulse) &&
-         r.get(m.tangentImpulse) && r.get(sliding);
+         r.get(m.tangentImpulse) && r.get(m.twistImpulse) && r.get(sliding);
     m.sliding = sliding != 0;
     if (!ok) return "";
     const bool pair = b >= 0 && b < bodies && surface == -1;
@@ -241,7 +241,8 @@ std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
   w.put(static_cast<uint32_t>(s.data.contactMemory.size()));
   for (const rigid::ContactMemory& m : s.data.contactMemory) {
     w.put(static_cast<int32_t>(m.a)), w.put(static_cast<int32_t>(m.b)), w.put(static_cast<int32_t>(m.surface));
-    w.put(m.localA), w.put(m.normalImpulse), w.put(m.tangentImpulse), w.put(static_cast<uint8_t>(m.sliding));
+    w.put(m.localA), w.put(m.normalImpulse), w.put(m.tangentImpulse), w.put(m.twistImpulse),
+        w.put(static_cast<uint8_t>(m.sliding));
   }
   return w.bytes;
 }

@@ -7,6 +7,7 @@
 
 #include "collision_detection.h"
 #include "contact_memory.h"
+#include "constraint_solver.h"
 #include "contact_solver.h"
 
 namespace rigid {
@@ -19,6 +20,13 @@ struct CollisionCache {
   std::vector<double> boundingRadius;  // m, per body (0 for bodies that meet nothing)
   std::vector<double> travel;          // m, scratch: each body's reach in a step
   ContactScratchPtr solver;            // the contact solver's buffers
+  // solver.contacts = "substep" (constraint_solver.h): the contacts of the step's start
+  // (the cache's `contacts` may hold a probe's while an impact is located), its
+  // buffers, the memory it stores, and the impulses it gave
+  std::vector<Contact> stepContacts;
+  ConstraintScratchPtr constraints;
+  std::vector<ContactMemory> storedMemory;
+  ContactImpulses impulses;
   // sleep.cpp's buffers: islands (union-find), which rest on a surface and which are
   // still long enough; the contact memory of sleeping bodies set aside during a solve
   std::vector<int> island;

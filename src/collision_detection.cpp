@@ -37,6 +37,7 @@ constexpr double kSideAlign = 0.2;
 constexpr int kMaxPatch = 4;
 // Vertices of an incident polygon: an octagon for a cylinder's end, plus one per clip.
 constexpr int kMaxPoly = 16;
+constexpr int kDiscVertices = 8;  // the octagon drawn on a cylinder's end disc
 constexpr double kPi = 3.14159265358979323846;
 
 // Geometry of one collision object in the frame FCL sees it: centre p and rotation
@@ -249,11 +250,11 @@ int incidentRoundFeature(const Geo& inc, const Vec3& m, Vec3* pts) {
     const Vec3 centre = inc.p + u * (c > 0.0 ? -inc.halfLength : inc.halfLength);
     const Vec3 w1 = down.norm() > 1e-9 ? Vec3(down.normalized()) : anyPerpendicular(u);
     const Vec3 w2 = u.cross(w1);
-    for (int i = 0; i < 8; ++i) {
-      const double th = i * kPi / 4.0;
+    for (int i = 0; i < kDiscVertices; ++i) {
+      const double th = i * 2.0 * kPi / kDiscVertices;
       pts[i] = centre + inc.radius * (std::cos(th) * w1 + std::sin(th) * w2);
     }
-    return 8;
+    return kDiscVertices;
   }
   if (std::abs(c) <= kSideAlign) {
     // Lying on its side: the line of the side (cylinder) or of the caps' lowest
@@ -308,9 +309,44 @@ int clipToFace(const ReferenceFace& f, int np, Vec3*& pts, Vec3* spare) {
   return np;
 }
 
+// The mean distance (m) of a convex polygon's area from its area centroid, the
+// polygon's np vertices in order (projected along the normal m); for 2 points a
+// quarter of the segment, for fewer 0. Each triangle of the fan from the centroid
+// integrates r over its area in closed form: with d the centroid's distance to the
+// edge's line and t = s / d the position along that line, d^3 / 6 [t sqrt(1 + t^2) +
+// asinh t] between the edge's ends.
+double meanDistanceFromCentroid(const Vec3* pts, int np, const Vec3& m) {
+  if (np < 2) return 0.0;
+  if (np == 2) return 0.25 * ((pts[1] - pts[0]) - m * m.dot(pts[1] - pts[0])).norm();
+  Vec3 centroid = Vec3::Zero();
+  double area = 0.0;
+  for (int i = 1; i + 1 < np; ++i) {  // the fan from vertex 0: area and area centroid
+    const double a = 0.5 * (pts[i] - pts[0]).cross(pts[i + 1] - pts[0]).dot(m);
+    area += a;
+    centroid += a * (pts[0] + pts[i] + pts[i + 1]) / 3.0;
+  }
+  if (!(std::abs(area) > 1e-18)) return 0.0;
+  centroid /= area;
+  auto primitive = [](double t) { return t * std::sqrt(1.0 + t * t) + std::asinh(t); };
+  double moment = 0.0;  // integral of r over the area
+  for (int i = 0; i < np; ++i) {
+    Vec3 p = pts[i] - centroid, q = pts[(i + 1) % np] - centroid;
+    p -= m * m.dot(p), q -= m * m.dot(q);
+    const Vec3 edge = q - p;
+    const double length = edge.norm();
+    if (!(length > 0.0)) continue;
+    const Vec3 u = edge / length;
+    const Vec3 foot = p - u * u.dot(p);  // the centroid's nearest point on the edge's line
+    const double d = foot.norm();
+    if (!(d > 1e-15)) continue;
+    moment += d * d * d / 6.0 * (primitive(u.dot(q) / d) - primitive(u.dot(p) / d));
+  }
+  return moment / std::abs(area);
+}
+
 // Appends the clipped points whose separation from the reference face is below
 // `margin` (or that touch or overlap it), at most kMaxPatch of them, well spread.
-int appendPatchPoints(const ReferenceFace& f, Vec3* pts, int np, double margin, const Contact& proto,
+int appendPatchPoints(const ReferenceFace& f, Vec3* pts, int np, double disc, double margin, const Contact& proto,
                       std::vector<Contact>& out) {
   // Separation of each point from the reference face (< 0: penetration).
   double sep[kMaxPoly];
@@ -323,11 +359,13 @@ int appendPatchPoints(const ReferenceFace& f, Vec3* pts, int np, double margin, 
       ++kept;
     }
   }
+  const double radius = disc > 0.0 && kept == np ? disc : meanDistanceFromCentroid(pts, kept, f.m);
   int keep[kMaxPatch];
   const int count = reducePatch(pts, sep, kept, f.m, keep);
   const Vec3 normal = f.refIsB ? Vec3(-f.m) : f.m;
   for (int i = 0; i < count; ++i) {
     Contact c = proto;
+    c.patchRadius = radius;
     c.normal = normal;
     c.depth = -sep[keep[i]];
     c.point = pts[keep[i]] - f.m * (0.5 * sep[keep[i]]);  // midway between the feature and the face
@@ -350,9 +388,12 @@ int appendFacePatch(const Geo& A, const Geo& B, const Vec3& n, double margin, co
   if (!face) return 0;
   Vec3 bufA[kMaxPoly], bufB[kMaxPoly];
   Vec3* pts = bufA;
-  int np = incidentFeature(*face->inc, face->m, pts);
-  np = clipToFace(*face, np, pts, bufB);
-  return appendPatchPoints(*face, pts, np, margin, proto, out);
+  const int whole = incidentFeature(*face->inc, face->m, pts);
+  const int np = clipToFace(*face, whole, pts, bufB);
+  // a cylinder's end disc (drawn as an octagon) that lies whole on the face: the
+  // disc's own radius, not the octagon's
+  const bool disc = face->inc->type == ShapeType::Cylinder && whole == kDiscVertices && np == whole;
+  return appendPatchPoints(*face, pts, np, disc ? 2.0 / 3.0 * face->inc->radius : 0.0, margin, proto, out);
 }
 
 // The separating-axis normal (a -> b) over the face normals of the boxes of the

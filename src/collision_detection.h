@@ -27,6 +27,11 @@ struct Contact {
   // the separating-axis test), else 0. A tilted box's corner beyond the other's face
   // counts there but not in the patch's depths.
   double pairOverlap = 0.0;
+  // m: the mean distance from the centre of the pair's contact patch, under uniform
+  // pressure, of the patch's area (every point of a face contact carries it): the lever
+  // arm of friction against spin about the normal. 0.3826 a for a square face of side a,
+  // 2/3 R for a disc, a quarter of a line's length; 0 for a single point.
+  double patchRadius = 0.0;
 };
 
 // Collision detection of one world instance: FCL geometry for every body that

@@ -17,6 +17,7 @@ struct ContactMemory {
   Vec3 localA = Vec3::Zero();          // m, the point in body a's frame, from its centre of mass
   double normalImpulse = 0.0;          // N s, accumulated lambda_n >= 0 along the normal from a to b
   Vec3 tangentImpulse = Vec3::Zero();  // N s, accumulated friction impulse on b (world frame)
+  double twistImpulse = 0.0;           // N m s, friction's moment on b about the normal (its share of the pair's)
   // The point slid at the end of the last solve (its friction reached the cone's edge):
   // the next solve limits its friction by mu_k, a sticking point's by mu_s.
   bool sliding = false;

@@ -402,6 +402,77 @@ double speculativeMargin(const StepContext& s, const std::vector<BodyState>& Y) 
   return std::clamp(2.0 * fastest * s.h, kSpeculativeMargin, kMaxSpeculativeMargin);
 }
 
+// solver.contacts = "substep": the integrator's free motion of every awake body over
+// tau, then the constraint solver's motion of the bodies that the step's contacts
+// join (constraint_solver.h), from the state and contact memory of the step's start.
+// Returns the integrator's steps (0: the adaptive method failed its tolerance).
+int moveBodies(StepContext& s, CollisionCache& c, double tau, std::vector<BodyState>& next) {
+  const int steps = advance(s.model, s.data, tau, next);
+  if (steps == 0) return 0;
+  Stopwatch response(slotOf(s.data, &StepProfile::response));
+  const SleepState& sleep = s.data.sleep;
+  for (size_t i = 0; i < s.data.contacts.size(); ++i)
+    if (!sleep.asleep[i]) s.data.contacts[i] = 0;  // a sleeping body keeps its count
+  const ConstraintReport report = solveConstraints(s.model, s.data, c.stepContacts, tau, s.data.contactMemory,
+                                                   c.storedMemory, next, s.data.contacts, c.constraints, c.impulses);
+  if (s.data.profiling) {
+    ++s.data.profile.solves;
+    s.data.profile.points += report.points;
+  }
+  return steps;
+}
+
+// The instant of the first impact within (0, tau], as locateImpact, each trial moving
+// the bodies with the constraint solver too.
+double locateImpactWithConstraints(StepContext& s, CollisionCache& c, double tau, std::vector<BodyState>& next) {
+  double lo = 0.0, hi = tau;
+  while (hi - lo > 1e-15 * tau) {
+    const double mid = 0.5 * (lo + hi);
+    moveBodies(s, c, mid, next);
+    (impactIn(s, next) ? hi : lo) = mid;
+  }
+  moveBodies(s, c, lo, next);
+  return lo;
+}
+
+// One internal step of solver.contacts = "substep", as its stages: collide (the
+// contacts of the step's start, with the speculative margin), move (the integrator,
+// then the constraint solver), the instant of a bouncing impact when the step holds
+// one (the step is then split there), store, commit, loads and sleep.
+StepResult stepOnceWithConstraints(StepContext& s, CollisionCache& c) {
+  std::vector<BodyState>& next = s.data.scratch.next;
+  constexpr int kMaxImpactsPerStep = 16;
+  double done = 0.0;
+  for (int impacts = 0;; ++impacts) {
+    const double rest = s.h - done;
+    detectContacts(s, s.data.Y, speculativeMargin(s, s.data.Y));
+    std::swap(c.contacts, c.stepContacts);
+    setAsideSleeping(s.data.sleep, s.data.contactMemory, c);
+    const int steps = moveBodies(s, c, rest, next);
+    double taken = rest;
+    if (steps > 0 && firstNonFinite(next) < 0 && impacts < kMaxImpactsPerStep && s.bouncy && impactIn(s, next))
+      taken = locateImpactWithConstraints(s, c, rest, next);
+    std::swap(c.contacts, c.stepContacts);  // the step's contacts, for sleep
+    std::swap(s.data.contactMemory, c.storedMemory);
+    mergeBackSleeping(s.data.contactMemory, c);
+    if (steps == 0) return failed(-1);
+    if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);
+    c.stepImpulse = c.impulses.linear;
+    c.stepAngularImpulse = c.impulses.angular;
+    c.pushes = c.impulses.pushes;
+    if (const StepResult r = commit(s.model, s.data, next, s.h); !r.ok) return r;
+    addLoadsAndSleep(s, taken);
+    s.data.steps += steps;
+    done += taken;
+    if (taken == rest || impacts >= kMaxImpactsPerStep) return {};
+    if (s.stopAtImpact && done > 0.0) {  // an impact inside the step, after its start
+      StepResult r;
+      r.impactAt = done;
+      return r;
+    }
+  }
+}
+
 // One internal step, as its stages: forces and integration (advance), contact
 // detection, the instant of a bouncing impact when the step holds one (the step is
 // then split there), the contact solve, and the new state's checks (commit).
@@ -413,6 +484,8 @@ StepResult stepOnce(StepContext& s) {
     s.data.steps += steps;
     return commit(s.model, s.data, next, s.h);
   }
+  if (s.model.contacts == ContactModel::Substep && s.data.collision)
+    return stepOnceWithConstraints(s, *s.data.collision);
   constexpr int kMaxImpactsPerStep = 16;
   double done = 0.0;
   for (int impacts = 0;; ++impacts) {

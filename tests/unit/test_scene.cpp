@@ -137,11 +137,13 @@ TEST(Scene, ContactSolverIsManifoldSoftOrNewton) {
             rigid::ContactModel::Soft);
   EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "newton"}, )")).model.contacts,
             rigid::ContactModel::Newton);
+  EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "substep"}, )")).model.contacts,
+            rigid::ContactModel::Substep);
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "centroid"}, )"),
                      "solver.contacts: \"centroid\" (the first contact model) was removed; must be \"manifold\", "
                      "\"soft\" or \"newton\"");
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "penalty"}, )"),
-                     "solver.contacts: must be \"manifold\", \"soft\" or \"newton\", got \"penalty\"");
+                     "solver.contacts: must be \"manifold\", \"soft\", \"newton\" or \"substep\", got \"penalty\"");
 }
 
 TEST(Scene, SleepRules) {

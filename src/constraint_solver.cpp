@@ -1,0 +1,548 @@
+#include "constraint_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+#include "contact_rules.h"
+#include "dynamics.h"
+
+namespace rigid {
+
+using namespace constraint_solver;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Points closer than this count as touching (a located impact leaves a gap of about
+// 1e-15 of the step's travel); farther ones are speculative.
+constexpr double kTouching = 1e-6;       // m
+constexpr double kMatchDistance = 0.01;  // m: a point within this of last step's (body a's frame) is the same
+constexpr int kMaxImpactPasses = 500;
+
+// Box2D's b2MakeSoft: a spring of natural frequency `hertz` and damping ratio zeta
+// over a step h, as the bias rate of the position error and the shares of the
+// effective mass and of the accumulated impulse in each impulse (massScale +
+// impulseScale = 1). Rigid: no bias, the whole mass.
+struct Softness {
+  double biasRate = 0.0, massScale = 1.0, impulseScale = 0.0;
+};
+
+Softness makeSoft(double hertz, double zeta, double h) {
+  const double omega = 2.0 * kPi * hertz;
+  const double a1 = 2.0 * zeta + h * omega, a2 = h * omega * a1, a3 = 1.0 / (1.0 + a2);
+  return {omega / a1, a2 * a3, a3};
+}
+
+// A body as the solver sees it; the last slot stands for every surface (no inverse
+// mass or inertia, never moves).
+struct Body {
+  double invMass = 0.0;
+  Mat3 invInertia = Mat3::Zero();  // 1/(kg m^2), world frame, at the step's start
+  Vec3 v = Vec3::Zero(), w = Vec3::Zero();    // velocities now
+  Vec3 v0 = Vec3::Zero(), w0 = Vec3::Zero();  // at the step's start
+  Vec3 dv = Vec3::Zero(), dw = Vec3::Zero();  // the applied forces' velocity change in a sub-step
+  Vec3 moved = Vec3::Zero();                  // m, since the step's start
+  Quat q0 = Quat::Identity(), q = Quat::Identity();
+  Mat3 turn = Mat3::Identity();  // the rotation since the step's start, q q0^-1
+};
+
+// One direction of a row: an impulse lambda acts +lambda along it on b, -lambda on a.
+struct Jacobian {
+  Vec3 linear = Vec3::Zero();
+  Vec3 angularA = Vec3::Zero(), angularB = Vec3::Zero();
+  Vec3 spinA = Vec3::Zero(), spinB = Vec3::Zero();  // I^-1 angular: the spin per unit impulse
+};
+
+Jacobian jacobian(const Body& A, const Body& B, const Vec3& linear, const Vec3& angularA, const Vec3& angularB) {
+  return {linear, angularA, angularB, A.invInertia * angularA, B.invInertia * angularB};
+}
+
+// The coupling of two directions through the bodies' masses: J_x M^-1 J_y^T.
+double coupling(const Body& A, const Body& B, const Jacobian& x, const Jacobian& y) {
+  return (A.invMass + B.invMass) * x.linear.dot(y.linear) + x.angularA.dot(y.spinA) + x.angularB.dot(y.spinB);
+}
+
+double velocityAlong(const Body& A, const Body& B, const Jacobian& j) {
+  return j.linear.dot(B.v - A.v) + j.angularB.dot(B.w) - j.angularA.dot(A.w);
+}
+
+void applyImpulse(Body& A, Body& B, const Jacobian& j, double lambda) {
+  A.v -= lambda * A.invMass * j.linear;
+  A.w -= lambda * j.spinA;
+  B.v += lambda * B.invMass * j.linear;
+  B.w += lambda * j.spinB;
+}
+
+struct Coefficients {
+  double xi = 0.0, mus = 0.0, muk = 0.0;
+};
+
+Coefficients coefficientsOf(const WorldModel& model, const Contact& c) {
+  const BodyConstants& a = model.bodies[c.a];
+  const bool body = c.b >= 0;
+  const double xi = body ? model.bodies[c.b].restitution : model.surfaces[c.surface].restitution;
+  const double mus = body ? model.bodies[c.b].staticFriction : model.surfaces[c.surface].staticFriction;
+  const double muk = body ? model.bodies[c.b].kineticFriction : model.surfaces[c.surface].kineticFriction;
+  return {combineCoefficients(a.restitution, xi), combineCoefficients(a.staticFriction, mus),
+          combineCoefficients(a.kineticFriction, muk)};
+}
+
+Vec3 anyPerpendicular(const Vec3& u) {
+  const Vec3 other = std::abs(u.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  return u.cross(other).normalized();
+}
+
+// One contact point's normal row.
+struct Point {
+  Jacobian n;
+  double mass = 0.0;        // 1 / (J M^-1 J^T)
+  Vec3 rA = Vec3::Zero(), rB = Vec3::Zero();  // m, the point from each centre of mass
+  double separation = 0.0;  // m, at the step's start (< 0: overlap)
+  double lambda = 0.0;      // N s, the sub-step's accumulated impulse (>= 0)
+  double total = 0.0;       // N s, over the step's sub-steps
+  Vec3 localA = Vec3::Zero();
+  bool touching = false;
+};
+
+// One touching pair: its points, and its friction at the centre of the patch.
+struct Manifold {
+  int a = 0, b = 0, surface = -1;  // solver bodies; b is the static slot on a surface
+  size_t first = 0, count = 0;     // its points in ConstraintScratch::points
+  Vec3 normal = Vec3::Zero();      // unit, from a to b
+  Vec3 rA = Vec3::Zero(), rB = Vec3::Zero();  // m, the patch's centre from each centre of mass
+  Jacobian friction[3];            // two tangents at the centre, and the twist about the normal
+  Mat3 frictionMass = Mat3::Zero();  // (J M^-1 J^T)^-1 over the three
+  double radius = 0.0;             // m, the patch radius (Contact::patchRadius): the twist's lever
+  Coefficients k;
+  Softness soft;
+  bool sliding = false;  // friction bounded by mu_k (else mu_s) for the whole step
+  bool atLimit = false;  // its friction on the edge of its bound after the last pass
+  Vec3 lambda = Vec3::Zero(), total = Vec3::Zero();  // (t1, t2, twist) impulses, as the points'
+};
+
+}  // namespace
+
+struct ConstraintScratch {
+  std::vector<Body> bodies;  // one per body, then the static slot
+  std::vector<char> involved;
+  std::vector<int> moving;  // the bodies some row touches
+  std::vector<Point> points;
+  std::vector<Manifold> manifolds;
+  std::vector<char> used;  // warm start: memory points already matched
+  int staticSlot() const { return static_cast<int>(bodies.size()) - 1; }
+};
+
+void ConstraintScratchDeleter::operator()(ConstraintScratch* s) const { delete s; }
+
+namespace {
+
+using Solver = ConstraintScratch;
+
+// ---- prepare ---------------------------------------------------------------------
+
+void prepareBody(const WorldModel& model, const WorldData& data, double hSub, int i, Solver& s) {
+  if (s.involved[i]) return;
+  s.involved[i] = 1;
+  s.moving.push_back(i);
+  const BodyConstants& constants = model.bodies[i];
+  const BodyState& y = data.Y[i];
+  BodyAux aux;
+  computeVelocities(constants, y, aux);
+  accumulateAppliedForces(model, constants, data.input[i], y, aux);
+  Body& b = s.bodies[i];
+  b = Body{};
+  b.invMass = 1.0 / constants.mass;
+  b.invInertia = aux.R * constants.IbodyInv * aux.R.transpose();
+  b.v = b.v0 = aux.V;
+  b.w = b.w0 = aux.omega;
+  b.dv = hSub * b.invMass * aux.F;
+  b.dw = hSub * (b.invInertia * aux.T);
+  b.q = b.q0 = y.q.normalized();
+}
+
+// The friction rows of a manifold at its centre: the first tangent along the slip, so
+// that a sliding pair's friction opposes it from the first pass.
+void prepareFriction(Manifold& m, const Solver& s) {
+  const Body& A = s.bodies[m.a];
+  const Body& B = s.bodies[m.b];
+  const Vec3& n = m.normal;
+  const Vec3 u = B.v + B.w.cross(m.rB) - A.v - A.w.cross(m.rA);
+  const Vec3 slip = u - u.dot(n) * n;
+  const Vec3 t1 = slip.norm() > 1e-9 ? Vec3(slip.normalized()) : anyPerpendicular(n);
+  const Vec3 t2 = n.cross(t1);
+  m.friction[0] = jacobian(A, B, t1, m.rA.cross(t1), m.rB.cross(t1));
+  m.friction[1] = jacobian(A, B, t2, m.rA.cross(t2), m.rB.cross(t2));
+  // without a patch (a point or an edge) there is no twist row: a zero row of unit mass
+  m.friction[2] = m.radius > 0.0 ? jacobian(A, B, Vec3::Zero(), n, n) : Jacobian{};
+  Mat3 K = Mat3::Identity();
+  for (int x = 0; x < 3; ++x)
+    for (int y = 0; y < 3; ++y)
+      if (m.radius > 0.0 || (x < 2 && y < 2)) K(x, y) = coupling(A, B, m.friction[x], m.friction[y]);
+  m.frictionMass = K.inverse();
+}
+
+// A manifold per touching pair (the detector's points come grouped by pair), a normal
+// row per point. A speculative point (apart by a gap) of a bouncing pair is left out:
+// its impact is located in time, and slowing it early would take energy from the bounce.
+void prepareRows(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts, double h,
+                 Solver& s) {
+  const double hSub = h / kSubsteps;
+  const double hertz = kContactHertzShare / hSub;
+  const Softness soft = makeSoft(hertz, kDampingRatio, hSub), stiff = makeSoft(2.0 * hertz, kDampingRatio, hSub);
+  const double restingSpeed = restingNormalSpeed(model.gravity, h);
+  s.points.clear();
+  s.manifolds.clear();
+  for (size_t i = 0; i < contacts.size();) {
+    size_t end = i + 1;
+    while (end < contacts.size() && contacts[end].a == contacts[i].a && contacts[end].b == contacts[i].b &&
+           contacts[end].surface == contacts[i].surface)
+      ++end;
+    const Contact& c = contacts[i];
+    Manifold m;
+    m.k = coefficientsOf(model, c);
+    m.a = c.a;
+    m.b = c.b >= 0 ? c.b : s.staticSlot();
+    m.surface = c.surface;
+    m.soft = c.b >= 0 ? soft : stiff;
+    m.radius = c.patchRadius;
+    m.first = s.points.size();
+    Vec3 centre = Vec3::Zero(), normal = Vec3::Zero();
+    for (size_t k = i; k < end; ++k) {
+      const bool touching = contacts[k].depth >= -kTouching;
+      if (!touching && m.k.xi > 0.0) continue;
+      Point p;
+      p.touching = touching;
+      p.separation = -contacts[k].depth;
+      p.rA = contacts[k].point - data.Y[c.a].X;
+      p.rB = c.b >= 0 ? Vec3(contacts[k].point - data.Y[c.b].X) : Vec3::Zero();
+      p.localA = data.Y[c.a].q.normalized().conjugate() * p.rA;
+      centre += contacts[k].point;
+      normal += contacts[k].normal;
+      s.points.push_back(p);
+    }
+    i = end;
+    m.count = s.points.size() - m.first;
+    if (m.count == 0) continue;
+    prepareBody(model, data, hSub, m.a, s);
+    if (c.b >= 0) prepareBody(model, data, hSub, c.b, s);
+    m.normal = normal.normalized();
+    centre /= static_cast<double>(m.count);
+    m.rA = centre - data.Y[c.a].X;
+    m.rB = c.b >= 0 ? Vec3(centre - data.Y[c.b].X) : Vec3::Zero();
+    const Body& A = s.bodies[m.a];
+    const Body& B = s.bodies[m.b];
+    for (size_t k = m.first; k < m.first + m.count; ++k) {
+      Point& p = s.points[k];
+      p.n = jacobian(A, B, m.normal, p.rA.cross(m.normal), p.rB.cross(m.normal));
+      p.mass = 1.0 / coupling(A, B, p.n, p.n);
+    }
+    prepareFriction(m, s);
+    const Vec3 u = B.v + B.w.cross(m.rB) - A.v - A.w.cross(m.rA);
+    m.sliding = (u - u.dot(m.normal) * m.normal).norm() > restingSpeed;  // a new pair; a kept one takes its memory's
+    s.manifolds.push_back(m);
+  }
+}
+
+// ---- warm start ------------------------------------------------------------------
+
+// Each point takes the impulse of last step's nearest point of the same pair (body a's
+// frame, within kMatchDistance), each old point used once; the pair takes the friction
+// of the points it matched and their sliding state. Memory holds impulses over a step;
+// the sub-steps take their share. Rows and memory come in the detector's pair order.
+void warmStart(const std::vector<ContactMemory>& memory, Solver& s) {
+  s.used.assign(memory.size(), 0);
+  auto before = [](const ContactMemory& m, const std::tuple<int, int, int>& key) {
+    return pairKey(m.a, m.b, m.surface) < key;
+  };
+  auto from = memory.begin();
+  for (Manifold& m : s.manifolds) {
+    const int b = m.b == s.staticSlot() ? -1 : m.b;
+    const auto key = pairKey(m.a, b, m.surface);
+    from = std::lower_bound(from, memory.end(), key, before);
+    auto to = from;
+    while (to != memory.end() && pairKey(to->a, to->b, to->surface) == key) ++to;
+    Vec3 tangent = Vec3::Zero();
+    double twist = 0.0;
+    bool matched = false;
+    for (size_t k = m.first; k < m.first + m.count; ++k) {
+      Point& p = s.points[k];
+      size_t best = memory.size();
+      double nearest = kMatchDistance * kMatchDistance;
+      for (auto it = from; it != to; ++it) {
+        const size_t i = static_cast<size_t>(it - memory.begin());
+        const double d2 = (it->localA - p.localA).squaredNorm();
+        if (!s.used[i] && d2 < nearest) nearest = d2, best = i;
+      }
+      if (best == memory.size()) continue;
+      s.used[best] = 1;
+      const ContactMemory& old = memory[best];
+      p.lambda = old.normalImpulse / kSubsteps;
+      tangent += old.tangentImpulse;
+      twist += old.twistImpulse;
+      m.sliding = old.sliding;
+      matched = true;
+    }
+    if (!matched) continue;
+    m.lambda = Vec3(tangent.dot(m.friction[0].linear), tangent.dot(m.friction[1].linear), m.radius > 0.0 ? twist : 0.0) /
+               kSubsteps;
+  }
+}
+
+// ---- the seed's impacts ------------------------------------------------------------
+
+// The seed's impulse at a pair's touching points merged into one (their centre): j =
+// -(1 + xi) v_n m_eff, then a Coulomb friction impulse against the slip, |j_t| <= mu j
+// (static when it stops the slip). Returns whether the pair struck.
+bool impact(const Manifold& m, const std::vector<Point>& points, double restingSpeed, Solver& s,
+            ContactImpulses& out) {
+  Vec3 centre = Vec3::Zero();
+  int touching = 0;
+  for (size_t k = m.first; k < m.first + m.count; ++k)
+    if (points[k].touching) centre += points[k].rA, ++touching;
+  if (touching == 0) return false;
+  Body& A = s.bodies[m.a];
+  Body& B = s.bodies[m.b];
+  const Vec3 rA = centre / touching, rB = m.rB + (rA - m.rA);
+  const Jacobian n = jacobian(A, B, m.normal, rA.cross(m.normal), rB.cross(m.normal));
+  const double vn = velocityAlong(A, B, n);
+  if (!(vn < -restingSpeed)) return false;
+  const double j = -(1.0 + m.k.xi) * vn / coupling(A, B, n, n);
+  applyImpulse(A, B, n, j);
+  Vec3 push = j * m.normal;
+  const Vec3 u = B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
+  const Vec3 slip = u - u.dot(m.normal) * m.normal;
+  if (slip.norm() >= 1e-15) {
+    const Vec3 d = -slip.normalized();
+    const Jacobian t = jacobian(A, B, d, rA.cross(d), rB.cross(d));
+    const double stick = slip.norm() / coupling(A, B, t, t);
+    const double jt = stick <= m.k.mus * j ? stick : m.k.muk * j;
+    applyImpulse(A, B, t, jt);
+    push += jt * d;
+  }
+  if (m.b == s.staticSlot()) out.pushes.push_back({m.a, m.surface, push});
+  return true;
+}
+
+// Passes over the bouncing pairs (xi > 0) while one of them approaches faster than a
+// resting body can, so that a chain of touching bodies passes an impact on. Returns the
+// passes taken.
+int answerImpacts(Solver& s, double restingSpeed, ContactImpulses& out) {
+  int passes = 0;
+  for (bool struck = true; struck && passes < kMaxImpactPasses;) {
+    struck = false;
+    for (const Manifold& m : s.manifolds)
+      if (m.k.xi > 0.0 && impact(m, s.points, restingSpeed, s, out)) struck = true;
+    if (struck) ++passes;
+  }
+  return passes;
+}
+
+// ---- sub-steps -------------------------------------------------------------------
+
+void integrateVelocities(Solver& s) {
+  for (int i : s.moving) {
+    Body& b = s.bodies[i];
+    b.v += b.dv;
+    b.w += b.dw;
+  }
+}
+
+void applyWarmStart(Solver& s) {
+  for (const Manifold& m : s.manifolds) {
+    Body& A = s.bodies[m.a];
+    Body& B = s.bodies[m.b];
+    for (size_t k = m.first; k < m.first + m.count; ++k) applyImpulse(A, B, s.points[k].n, s.points[k].lambda);
+    for (int x = 0; x < 3; ++x) applyImpulse(A, B, m.friction[x], m.lambda[x]);
+  }
+}
+
+// How far the point has closed since the step's start, along the normal (m): the two
+// bodies' material points, moved and turned.
+double closing(const Body& A, const Body& B, const Point& p, const Vec3& n) {
+  const Vec3 pa = A.moved + A.turn * p.rA - p.rA, pb = B.moved + B.turn * p.rB - p.rB;
+  return n.dot(pb - pa);
+}
+
+// Normal rows: lambda_n += the soft impulse toward the target, clamped at 0 accumulated.
+// A gap may close within the step and no more (speculative); an overlap is pushed apart
+// at the soft bias's rate with the soft mass, and without bias when relaxing.
+void solveNormals(Solver& s, Manifold& m, double hSub, bool useBias) {
+  Body& A = s.bodies[m.a];
+  Body& B = s.bodies[m.b];
+  for (size_t k = m.first; k < m.first + m.count; ++k) {
+    Point& p = s.points[k];
+    const double separation = p.separation + closing(A, B, p, m.normal);
+    double bias = 0.0, massScale = 1.0, impulseScale = 0.0;
+    if (separation > 0.0) {
+      bias = separation / hSub;
+    } else if (useBias) {
+      bias = std::max(m.soft.biasRate * separation, -kMaxPushOut);
+      massScale = m.soft.massScale;
+      impulseScale = m.soft.impulseScale;
+    }
+    const double vn = velocityAlong(A, B, p.n);
+    const double impulse = -p.mass * massScale * (vn + bias) - impulseScale * p.lambda;
+    const double total = std::max(p.lambda + impulse, 0.0);
+    applyImpulse(A, B, p.n, total - p.lambda);
+    p.lambda = total;
+  }
+}
+
+// Friction at the patch: the impulses (t1, t2, twist) that stop its slip and spin,
+// projected onto the ellipsoid |(l1, l2, l_twist / r)| <= mu lambda_N (mu_s while the
+// pair sticks, mu_k once it slides), lambda_N the sum of its points' normal impulses:
+// slip and spin share one bound, so that a puck sliding and spinning stops both at once.
+void solveFriction(Solver& s, Manifold& m) {
+  Body& A = s.bodies[m.a];
+  Body& B = s.bodies[m.b];
+  double normal = 0.0;
+  for (size_t k = m.first; k < m.first + m.count; ++k) normal += s.points[k].lambda;
+  const double bound = (m.sliding ? m.k.muk : m.k.mus) * normal;
+  const Vec3 velocity(velocityAlong(A, B, m.friction[0]), velocityAlong(A, B, m.friction[1]),
+                      velocityAlong(A, B, m.friction[2]));
+  Vec3 lambda = m.lambda - m.frictionMass * velocity;
+  const double r = m.radius > 0.0 ? m.radius : 1.0;
+  const double size = std::sqrt(lambda.x() * lambda.x() + lambda.y() * lambda.y() + (lambda.z() / r) * (lambda.z() / r));
+  m.atLimit = size >= (1.0 - 1e-9) * bound;
+  if (size > bound) lambda *= bound / size;
+  for (int x = 0; x < 3; ++x) applyImpulse(A, B, m.friction[x], lambda[x] - m.lambda[x]);
+  m.lambda = lambda;
+}
+
+void solvePass(Solver& s, double hSub, bool useBias) {
+  for (Manifold& m : s.manifolds) {
+    solveNormals(s, m, hSub, useBias);
+    solveFriction(s, m);
+  }
+}
+
+// Positions from the new velocities: X += h v, q += h/2 (0, omega) q.
+void integratePositions(Solver& s, double hSub) {
+  for (int i : s.moving) {
+    Body& b = s.bodies[i];
+    b.moved += hSub * b.v;
+    const Quat spin(0.0, 0.5 * hSub * b.w.x(), 0.5 * hSub * b.w.y(), 0.5 * hSub * b.w.z());
+    b.q = Quat(b.q.coeffs() + (spin * b.q).coeffs()).normalized();
+    b.turn = (b.q * b.q0.conjugate()).toRotationMatrix();
+  }
+}
+
+void addSubstepImpulses(Solver& s) {
+  for (Point& p : s.points) p.total += p.lambda;
+  for (Manifold& m : s.manifolds) m.total += m.lambda;
+}
+
+// ---- store -----------------------------------------------------------------------
+
+// A pair slides in the next step (kinetic bound) when its friction ended on its bound
+// with the patch still slipping or spinning faster than slideSpeed; a body slides as a
+// whole, so the state is the pair's.
+bool slides(const Solver& s, const Manifold& m, double slideSpeed) {
+  if (!m.atLimit) return false;
+  const Body& A = s.bodies[m.a];
+  const Body& B = s.bodies[m.b];
+  const double v1 = velocityAlong(A, B, m.friction[0]), v2 = velocityAlong(A, B, m.friction[1]);
+  const double spin = velocityAlong(A, B, m.friction[2]) * m.radius;
+  return std::sqrt(v1 * v1 + v2 * v2 + spin * spin) > slideSpeed;
+}
+
+// Each point with its step's normal impulse and its share of the pair's friction.
+void store(const Solver& s, double slideSpeed, std::vector<ContactMemory>& memory) {
+  memory.clear();
+  for (const Manifold& m : s.manifolds) {
+    const bool sliding = slides(s, m, slideSpeed);
+    const double share = 1.0 / static_cast<double>(m.count);
+    const Vec3 tangent = m.total.x() * m.friction[0].linear + m.total.y() * m.friction[1].linear;
+    for (size_t k = m.first; k < m.first + m.count; ++k) {
+      const Point& p = s.points[k];
+      ContactMemory c;
+      c.a = m.a;
+      c.b = m.b == s.staticSlot() ? -1 : m.b;
+      c.surface = m.surface;
+      c.localA = p.localA;
+      c.normalImpulse = p.total;
+      c.tangentImpulse = share * tangent;
+      c.twistImpulse = share * m.total.z();
+      c.sliding = sliding;
+      memory.push_back(c);
+    }
+  }
+}
+
+// The sub-steps' impulses on the surfaces, one push per pair.
+void pushSurfaces(const Solver& s, ContactImpulses& out) {
+  for (const Manifold& m : s.manifolds) {
+    if (m.b != s.staticSlot()) continue;
+    Vec3 push = m.total.x() * m.friction[0].linear + m.total.y() * m.friction[1].linear;
+    for (size_t k = m.first; k < m.first + m.count; ++k) push += s.points[k].total * m.normal;
+    out.pushes.push_back({m.a, m.surface, push});
+  }
+}
+
+// The moved bodies into next, and what contact gave each: the momenta change by the
+// velocity change (I at the step's start, the inertia the solve used), less the
+// applied forces' share.
+void commitBodies(const WorldModel& model, const WorldData& data, const Solver& s,
+                  std::vector<BodyState>& next, ContactImpulses& out) {
+  for (int i : s.moving) {
+    const Body& b = s.bodies[i];
+    const BodyConstants& constants = model.bodies[i];
+    const BodyState& y = data.Y[i];
+    const Mat3 inertia = b.q0.toRotationMatrix() * constants.Ibody * b.q0.toRotationMatrix().transpose();
+    BodyState& out_ = next[i];
+    out_.X = y.X + b.moved;
+    out_.q = b.q;
+    out_.P = y.P + constants.mass * (b.v - b.v0);
+    out_.L = y.L + inertia * (b.w - b.w0);
+    out.linear[i] = constants.mass * (b.v - b.v0 - kSubsteps * b.dv);
+    out.angular[i] = inertia * (b.w - b.w0 - kSubsteps * b.dw);
+  }
+}
+
+void countTouching(const std::vector<Contact>& contacts, std::vector<int>& count) {
+  for (const Contact& c : contacts) {
+    if (c.depth < -kTouching) continue;
+    ++count[c.a];
+    if (c.b >= 0) ++count[c.b];
+  }
+}
+
+}  // namespace
+
+ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
+                                  double h, const std::vector<ContactMemory>& remembered,
+                                  std::vector<ContactMemory>& stored, std::vector<BodyState>& next,
+                                  std::vector<int>& count, ConstraintScratchPtr& scratch, ContactImpulses& impulses) {
+  ConstraintReport report;
+  const size_t n = data.Y.size();
+  impulses.linear.assign(n, Vec3::Zero());
+  impulses.angular.assign(n, Vec3::Zero());
+  impulses.pushes.clear();
+  countTouching(contacts, count);
+  if (!scratch) scratch.reset(new ConstraintScratch);
+  Solver& s = *scratch;
+  s.bodies.assign(n + 1, Body{});
+  s.involved.assign(n, 0);
+  s.moving.clear();
+  prepareRows(model, data, contacts, h, s);
+  report.points = static_cast<int>(s.points.size());
+  const double restingSpeed = restingNormalSpeed(model.gravity, h);
+  report.impactPasses = answerImpacts(s, restingSpeed, impulses);
+  warmStart(remembered, s);
+  const double hSub = h / kSubsteps;
+  for (int k = 0; k < kSubsteps; ++k) {
+    integrateVelocities(s);
+    applyWarmStart(s);
+    solvePass(s, hSub, true);
+    integratePositions(s, hSub);
+    for (int pass = 0; pass < kRelaxPasses; ++pass) solvePass(s, hSub, false);
+    addSubstepImpulses(s);
+  }
+  store(s, std::max(1e-5, 0.01 * restingSpeed), stored);
+  pushSurfaces(s, impulses);
+  commitBodies(model, data, s, next, impulses);
+  return report;
+}
+
+}  // namespace rigid

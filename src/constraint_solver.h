@@ -1,0 +1,72 @@
+// The constraint solver (solver.contacts = "substep" while it is being brought in; it
+// will be the only one): Box2D v3's soft step in three dimensions. It moves the bodies
+// of the contact islands over a step, in this order:
+//   impacts      the seed's impulse j with restitution xi at every touching pair that
+//                approaches faster than a resting body can (the step starts at the
+//                located instant of the impact), pass after pass (Newton's cradle);
+//   sub-steps    kSubsteps times: the applied forces' velocity change, the warm start
+//                (each row's accumulated impulse), the solve with a soft bias that
+//                pushes overlaps apart, the positions from the new velocities, and a
+//                relax pass without the bias, so that the push adds no velocity;
+//   store        the impulses, for the next step's warm start (ContactMemory).
+// One row type per constraint: a point's normal (lambda_n >= 0), a pair's friction at
+// the centre of its patch (two tangents and a twist about the normal, bounded together
+// by mu lambda_N on an ellipsoid whose twist axis is scaled by the patch radius).
+// Bodies outside every island are left to the integrator.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "collision_detection.h"
+#include "contact_memory.h"
+#include "contact_solver.h"
+
+namespace rigid {
+
+namespace constraint_solver {
+constexpr int kSubsteps = 4;
+constexpr int kRelaxPasses = 1;
+// Contact softness (Box2D's b2MakeSoft): a natural frequency, as a share of the
+// sub-step rate, and a damping ratio; a point on a surface (infinite mass) is twice as
+// stiff. A quarter of the sub-step rate is Box2D's upper bound, where the soft step
+// stays stable; the stiffest contact sinks least under a column's load (the sinking
+// of a soft contact grows with the load it carries over its effective mass).
+constexpr double kContactHertzShare = 0.1;
+constexpr double kDampingRatio = 10.0;
+constexpr double kMaxPushOut = 3.0;  // m/s, the fastest an overlap is pushed apart
+}  // namespace constraint_solver
+
+// The solver's buffers, kept between steps (CollisionCache): no state, only space.
+struct ConstraintScratch;
+struct ConstraintScratchDeleter {
+  void operator()(ConstraintScratch* s) const;
+};
+using ConstraintScratchPtr = std::unique_ptr<ConstraintScratch, ConstraintScratchDeleter>;
+
+// What one step of the solver did.
+struct ConstraintReport {
+  int points = 0;        // contact points answered
+  int impactPasses = 0;  // passes of the impacts (0: none)
+};
+
+// What the solver gave the bodies over a step: each body's contact impulse and its
+// moment about the centre of mass (N s, N m s, world frame), and the surfaces' pushes.
+struct ContactImpulses {
+  std::vector<Vec3> linear, angular;
+  std::vector<SurfacePush> pushes;
+};
+
+// Moves the bodies that `contacts` (detected at data.Y, the step's start, with a
+// speculative margin; sorted by pair) join over a step h: next[i] of each such body
+// is replaced, every other next[i] is left as the integrator made it. The solve starts
+// from `remembered` (last step's points) and writes this step's to `stored`, so that
+// a step may be tried again from the same start (an impact located by bisection);
+// `impulses` takes the step's contact impulses; `count` gains each body's touching
+// points.
+ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
+                                  double h, const std::vector<ContactMemory>& remembered,
+                                  std::vector<ContactMemory>& stored, std::vector<BodyState>& next,
+                                  std::vector<int>& count, ConstraintScratchPtr& scratch, ContactImpulses& impulses);
+
+}  // namespace rigid

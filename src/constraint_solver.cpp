@@ -97,7 +97,10 @@ Vec3 anyPerpendicular(const Vec3& u) {
 struct Point {
   Jacobian n;
   double mass = 0.0;        // 1 / (J M^-1 J^T)
-  Vec3 rA = Vec3::Zero(), rB = Vec3::Zero();  // m, the point from each centre of mass
+  // m, the point from each centre of mass: at the step's start, and now (the material
+  // points of the two bodies move apart within the step; the impulse acts at their
+  // midpoint on both, so that it has no moment about any point: momenta are kept)
+  Vec3 rA0 = Vec3::Zero(), rB0 = Vec3::Zero(), rA = Vec3::Zero(), rB = Vec3::Zero();
   double separation = 0.0;  // m, at the step's start (< 0: overlap)
   double lambda = 0.0;      // N s, the sub-step's accumulated impulse (>= 0)
   double total = 0.0;       // N s, over the step's sub-steps
@@ -110,7 +113,9 @@ struct Manifold {
   int a = 0, b = 0, surface = -1;  // solver bodies; b is the static slot on a surface
   size_t first = 0, count = 0;     // its points in ConstraintScratch::points
   Vec3 normal = Vec3::Zero();      // unit, from a to b
-  Vec3 rA = Vec3::Zero(), rB = Vec3::Zero();  // m, the patch's centre from each centre of mass
+  Vec3 rA0 = Vec3::Zero(), rB0 = Vec3::Zero();  // m, the patch's centre from each centre of mass, at the start
+  Vec3 rA = Vec3::Zero(), rB = Vec3::Zero();    // m, and now (as Point's)
+  Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();    // the tangents, fixed over the step
   Jacobian friction[3];            // two tangents at the centre, and the twist about the normal
   Mat3 frictionMass = Mat3::Zero();  // (J M^-1 J^T)^-1 over the three
   double radius = 0.0;             // m, the patch radius (Contact::patchRadius): the twist's lever
@@ -161,6 +166,11 @@ void prepareBody(const WorldModel& model, const WorldData& data, double hSub, in
   b.q = b.q0 = y.q.normalized();
 }
 
+void frictionJacobians(Manifold& m, const Body& A, const Body& B) {
+  m.friction[0] = jacobian(A, B, m.t1, m.rA.cross(m.t1), m.rB.cross(m.t1));
+  m.friction[1] = jacobian(A, B, m.t2, m.rA.cross(m.t2), m.rB.cross(m.t2));
+}
+
 // The friction rows of a manifold at its centre: the first tangent along the slip, so
 // that a sliding pair's friction opposes it from the first pass.
 void prepareFriction(Manifold& m, const Solver& s) {
@@ -169,10 +179,9 @@ void prepareFriction(Manifold& m, const Solver& s) {
   const Vec3& n = m.normal;
   const Vec3 u = B.v + B.w.cross(m.rB) - A.v - A.w.cross(m.rA);
   const Vec3 slip = u - u.dot(n) * n;
-  const Vec3 t1 = slip.norm() > 1e-9 ? Vec3(slip.normalized()) : anyPerpendicular(n);
-  const Vec3 t2 = n.cross(t1);
-  m.friction[0] = jacobian(A, B, t1, m.rA.cross(t1), m.rB.cross(t1));
-  m.friction[1] = jacobian(A, B, t2, m.rA.cross(t2), m.rB.cross(t2));
+  m.t1 = slip.norm() > 1e-9 ? Vec3(slip.normalized()) : anyPerpendicular(n);
+  m.t2 = n.cross(m.t1);
+  frictionJacobians(m, A, B);
   // without a patch (a point or an edge) there is no twist row: a zero row of unit mass
   m.friction[2] = m.radius > 0.0 ? jacobian(A, B, Vec3::Zero(), n, n) : Jacobian{};
   Mat3 K = Mat3::Identity();
@@ -214,8 +223,8 @@ void prepareRows(const WorldModel& model, const WorldData& data, const std::vect
       Point p;
       p.touching = touching;
       p.separation = -contacts[k].depth;
-      p.rA = contacts[k].point - data.Y[c.a].X;
-      p.rB = c.b >= 0 ? Vec3(contacts[k].point - data.Y[c.b].X) : Vec3::Zero();
+      p.rA = p.rA0 = contacts[k].point - data.Y[c.a].X;
+      p.rB = p.rB0 = c.b >= 0 ? Vec3(contacts[k].point - data.Y[c.b].X) : Vec3::Zero();
       p.localA = data.Y[c.a].q.normalized().conjugate() * p.rA;
       centre += contacts[k].point;
       normal += contacts[k].normal;
@@ -228,8 +237,8 @@ void prepareRows(const WorldModel& model, const WorldData& data, const std::vect
     if (c.b >= 0) prepareBody(model, data, hSub, c.b, s);
     m.normal = normal.normalized();
     centre /= static_cast<double>(m.count);
-    m.rA = centre - data.Y[c.a].X;
-    m.rB = c.b >= 0 ? Vec3(centre - data.Y[c.b].X) : Vec3::Zero();
+    m.rA = m.rA0 = centre - data.Y[c.a].X;
+    m.rB = m.rB0 = c.b >= 0 ? Vec3(centre - data.Y[c.b].X) : Vec3::Zero();
     const Body& A = s.bodies[m.a];
     const Body& B = s.bodies[m.b];
     for (size_t k = m.first; k < m.first + m.count; ++k) {
@@ -360,8 +369,32 @@ void applyWarmStart(Solver& s) {
 // How far the point has closed since the step's start, along the normal (m): the two
 // bodies' material points, moved and turned.
 double closing(const Body& A, const Body& B, const Point& p, const Vec3& n) {
-  const Vec3 pa = A.moved + A.turn * p.rA - p.rA, pb = B.moved + B.turn * p.rB - p.rB;
+  const Vec3 pa = A.moved + A.turn * p.rA0 - p.rA0, pb = B.moved + B.turn * p.rB0 - p.rB0;
   return n.dot(pb - pa);
+}
+
+// The lever arms to the midpoint of the two bodies' material points of a point that
+// was at rA0 and rB0 at the step's start.
+void followPoint(const Body& A, const Body& B, const Vec3& rA0, const Vec3& rB0, Vec3& rA, Vec3& rB) {
+  const Vec3 shift = 0.5 * (A.moved + A.turn * rA0 - rA0 + B.moved + B.turn * rB0 - rB0);
+  rA = rA0 + shift - A.moved;
+  rB = rB0 + shift - B.moved;
+}
+
+// Each row's directions at the points as the bodies have moved them (effective masses
+// are kept from the step's start: they only scale the passes' steps).
+void followBodies(Solver& s) {
+  for (Manifold& m : s.manifolds) {
+    const Body& A = s.bodies[m.a];
+    const Body& B = s.bodies[m.b];
+    for (size_t k = m.first; k < m.first + m.count; ++k) {
+      Point& p = s.points[k];
+      followPoint(A, B, p.rA0, p.rB0, p.rA, p.rB);
+      p.n = jacobian(A, B, m.normal, p.rA.cross(m.normal), p.rB.cross(m.normal));
+    }
+    followPoint(A, B, m.rA0, m.rB0, m.rA, m.rB);
+    frictionJacobians(m, A, B);
+  }
 }
 
 // Normal rows: lambda_n += the soft impulse toward the target, clamped at 0 accumulated.
@@ -536,6 +569,7 @@ ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data
     applyWarmStart(s);
     solvePass(s, hSub, true);
     integratePositions(s, hSub);
+    followBodies(s);
     for (int pass = 0; pass < kRelaxPasses; ++pass) solvePass(s, hSub, false);
     addSubstepImpulses(s);
   }

@@ -1,0 +1,179 @@
+// The constraint solver (solver.contacts = "substep", src/constraint_solver.h) against
+// closed forms: friction against spin from the patch under uniform pressure, a puck
+// whose slip and spin stop together, momentum kept through contact to rounding, and
+// stacks that stand with sleep off.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "contact_scenes.h"
+#include "world.h"
+
+namespace {
+
+using namespace test_scenes;
+
+json constraints(json scene) { return withContacts(std::move(scene), "substep"); }
+
+// (sqrt 2 + ln(1 + sqrt 2)) / 6: the mean distance of a square's area from its centre,
+// per unit side.
+const double kSquareRadius = (std::sqrt(2.0) + std::log(1.0 + std::sqrt(2.0))) / 6.0;
+
+// Runs until the body's spin about z has stopped (below 1e-3 of omega0): the time (s).
+double timeToStopSpinning(Sim& sim, double omega0, double limit) {
+  double t = 0.0;
+  while (t < limit && std::abs(sim.data.aux[0].omega.z()) > 1e-3 * omega0) {
+    sim.run(sim.model.maxStep);
+    t += sim.model.maxStep;
+  }
+  return t;
+}
+
+// A cube resting on its face, spun about the vertical: kinetic friction under uniform
+// pressure brakes it by mu m g r, r = 0.3826 a, and it stops at omega0 I / (mu m g r)
+// with I = m a^2 / 6 (four corner points would give r = a / sqrt 2: 0.54 of the time).
+TEST(ConstraintSolver, CubeSpunOnItsFaceStopsAtTheUniformPressureTime) {
+  const double a = 0.1, mu = 0.5, omega0 = 5.0;
+  json cube = box("cube", Vec3::Constant(a), Vec3(0, 0, 0.5 * a), Quat::Identity(), 0.0, mu, mu);
+  cube["angularVelocity"] = {0, 0, omega0};
+  Sim sim(constraints(sceneOf(cube, floorSurface(mu, mu))));
+  const double expected = omega0 * (a * a / 6.0) / (mu * kG * kSquareRadius * a);
+  const double stopped = timeToStopSpinning(sim, omega0, 2.0 * expected);
+  std::printf("stopped at %.4f s, closed form %.4f s\n", stopped, expected);
+  EXPECT_NEAR(stopped, expected, 0.03 * expected);
+  EXPECT_LT(sim.data.Y[0].X.head<2>().norm(), 1e-6);  // spun in place
+}
+
+// A puck (a cylinder on its end) spun about its axis: r = 2/3 R under uniform pressure,
+// I = m R^2 / 2, stop at omega0 I / (mu m g r) = 3 omega0 R / (4 mu g).
+TEST(ConstraintSolver, PuckSpunOnItsEndStopsAtTheUniformPressureTime) {
+  const double R = 0.1, length = 0.04, mu = 0.4, omega0 = 8.0;
+  json puck = {{"name", "puck"},
+               {"shape", {{"type", "cylinder"}, {"radius", R}, {"length", length}}},
+               {"mass", 1.0},
+               {"position", {0, 0, 0.5 * length}},
+               {"angularVelocity", {0, 0, omega0}},
+               {"restitution", 0.0},
+               {"staticFriction", mu},
+               {"kineticFriction", mu}};
+  Sim sim(constraints(sceneOf(puck, floorSurface(mu, mu))));
+  const double expected = 3.0 * omega0 * R / (4.0 * mu * kG);
+  const double stopped = timeToStopSpinning(sim, omega0, 2.0 * expected);
+  std::printf("stopped at %.4f s, closed form %.4f s\n", stopped, expected);
+  EXPECT_NEAR(stopped, expected, 0.03 * expected);
+}
+
+// A puck sliding and spinning (Farkas et al. 2003): slip and spin share one friction
+// bound, so both stop at the same instant, whatever their ratio at the start.
+TEST(ConstraintSolver, PuckSlidingAndSpinningStopsBothMotionsAtOnce) {
+  const double R = 0.1, length = 0.04, mu = 0.3;
+  for (const auto& [v0, omega0] : {std::pair<double, double>{1.0, 10.0}, {0.5, 30.0}, {2.0, 5.0}}) {
+    json puck = {{"name", "puck"},
+                 {"shape", {{"type", "cylinder"}, {"radius", R}, {"length", length}}},
+                 {"mass", 1.0},
+                 {"position", {0, 0, 0.5 * length}},
+                 {"velocity", {v0, 0, 0}},
+                 {"angularVelocity", {0, 0, omega0}},
+                 {"restitution", 0.0},
+                 {"staticFriction", mu},
+                 {"kineticFriction", mu}};
+    Sim sim(constraints(sceneOf(puck, floorSurface(mu, mu))));
+    double t = 0.0, slipStop = -1.0, spinStop = -1.0;
+    while (t < 3.0 && (slipStop < 0.0 || spinStop < 0.0)) {
+      sim.run(sim.model.maxStep);
+      t += sim.model.maxStep;
+      if (slipStop < 0.0 && sim.data.aux[0].V.head<2>().norm() < 1e-3 * v0) slipStop = t;
+      if (spinStop < 0.0 && std::abs(sim.data.aux[0].omega.z()) < 1e-3 * omega0) spinStop = t;
+    }
+    std::printf("v0 %.1f m/s, omega0 %.0f rad/s: slip stops at %.4f s, spin at %.4f s\n", v0, omega0, slipStop,
+                spinStop);
+    ASSERT_GT(slipStop, 0.0);
+    ASSERT_GT(spinStop, 0.0);
+    EXPECT_NEAR(slipStop, spinStop, 0.05 * std::max(slipStop, spinStop));
+  }
+}
+
+// A sphere spun backwards, slipping on a plank that lies on a frictionless floor: the
+// friction between them is internal, so the pair's horizontal momentum stays what it
+// was to rounding, while the slip turns into rolling.
+TEST(ConstraintSolver, SphereSlippingOnAPlankKeepsThePairsHorizontalMomentum) {
+  json plank = box("plank", Vec3(2.0, 0.5, 0.05), Vec3(0, 0, 0.025), Quat::Identity(), 0.0, 0.5, 0.4);
+  plank["mass"] = 3.0;
+  json ball = {{"name", "ball"},
+               {"shape", {{"type", "sphere"}, {"radius", 0.1}}},
+               {"mass", 1.0},
+               {"position", {0, 0, 0.15}},
+               {"velocity", {1.5, 0.2, 0}},
+               {"angularVelocity", {2.0, 20.0, 0}},
+               {"restitution", 0.0},
+               {"staticFriction", 0.5},
+               {"kineticFriction", 0.4}};
+  Sim sim(constraints(sceneOf(json::array({plank, ball}), floorSurface(0.0, 0.0))));
+  auto horizontal = [&]() -> Eigen::Vector2d { return (sim.data.Y[0].P + sim.data.Y[1].P).head<2>(); };
+  const Eigen::Vector2d start = horizontal();
+  sim.run(0.5);
+  const Vec3 slip = sim.data.aux[1].V + sim.data.aux[1].omega.cross(Vec3(0, 0, -0.1)) - sim.data.aux[0].V;
+  std::printf("momentum change %.3g of %.3g; slip at the end %.3g m/s\n", (horizontal() - start).norm(),
+              start.norm(), slip.head<2>().norm());
+  EXPECT_LT((horizontal() - start).norm(), 1e-12 * start.norm());
+  EXPECT_GT((sim.data.aux[0].V.head<2>()).norm(), 0.01);  // the plank was set moving
+}
+
+// Two spinning boxes with friction meet obliquely in free space: linear momentum and
+// angular momentum about the origin are kept to rounding.
+TEST(ConstraintSolver, TwoBodiesCollidingInFreeSpaceKeepTheirMomenta) {
+  json a = box("a", Vec3(0.3, 0.2, 0.1), Vec3(0, 0, 0), Quat(Eigen::AngleAxisd(0.4, Vec3(1, 2, 0).normalized())),
+               0.0, 0.8, 0.6);
+  a["mass"] = 2.0;
+  a["velocity"] = {1.0, 0.1, 0.05};
+  a["angularVelocity"] = {1.0, -2.0, 3.0};
+  json b = box("b", Vec3(0.2, 0.2, 0.2), Vec3(0.45, 0.05, 0.03), Quat(Eigen::AngleAxisd(-0.3, Vec3::UnitZ())), 0.0,
+               0.8, 0.6);
+  b["velocity"] = {-1.0, 0.0, 0.1};
+  b["angularVelocity"] = {0.0, 4.0, -1.0};
+  json scene = constraints(sceneOf(json::array({a, b}), json::array()));
+  scene["gravity"] = {0, 0, 0};
+  Sim sim(scene);
+  auto linear = [&] { return Vec3(sim.data.Y[0].P + sim.data.Y[1].P); };
+  auto angular = [&] {
+    return Vec3(sim.data.Y[0].X.cross(sim.data.Y[0].P) + sim.data.Y[0].L + sim.data.Y[1].X.cross(sim.data.Y[1].P) +
+                sim.data.Y[1].L);
+  };
+  const Vec3 P0 = linear(), L0 = angular();
+  const Vec3 Pa = sim.data.Y[0].P;
+  sim.run(0.5);
+  std::printf("linear %.3g of %.3g, angular %.3g of %.3g\n", (linear() - P0).norm(), P0.norm(),
+              (angular() - L0).norm(), L0.norm());
+  EXPECT_GT((sim.data.Y[0].P - Pa).norm(), 0.5);  // they met
+  const double scale = 2.0 * 1.0;                  // kg m/s, the larger body's momentum
+  EXPECT_LT((linear() - P0).norm(), 1e-12 * scale);
+  EXPECT_LT((angular() - L0).norm(), 1e-12 * (scale * 0.5 + L0.norm()));
+}
+
+// Stands 10 s with sleep off: every body within 1 mm of where it was at 0.5 s, the
+// fastest below 1 mm/s at the end, no overlap deeper than 1 mm.
+void expectStands(const json& bodies, double step) {
+  Sim sim(constraints(sceneOf(bodies, {floorSurface()}, step)));
+  const double drift = driftAfterSettling(sim, 0.5, 9.5);
+  std::printf("drift %.3g m, fastest %.3g m/s, deepest overlap %.3g m\n", drift, sim.fastest(), sim.deepestOverlap());
+  EXPECT_LT(drift, 1e-3);
+  EXPECT_LT(sim.fastest(), 1e-3);
+  EXPECT_LT(sim.deepestOverlap(), 1e-3);
+}
+
+TEST(ConstraintSolver, StackOfTwentyCubesStands) { expectStands(column(20), 2e-3); }
+
+// A pyramid of 20 layers of 0.1 m cubes (210), each layer's cubes on the gaps below.
+TEST(ConstraintSolver, PyramidOfTwentyLayersStands) {
+  json bodies = json::array();
+  for (int layer = 0; layer < 20; ++layer)
+    for (int k = 0; k < 20 - layer; ++k)
+      bodies.push_back(box("b" + std::to_string(bodies.size()), Vec3::Constant(kEdge),
+                           Vec3((k - 0.5 * (19 - layer)) * 1.01 * kEdge, 0, kEdge * (0.5 + layer))));
+  expectStands(bodies, 2e-3);
+}
+
+}  // namespace

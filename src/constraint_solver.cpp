@@ -97,9 +97,9 @@ Vec3 anyPerpendicular(const Vec3& u) {
 struct Point {
   Jacobian n;
   double mass = 0.0;        // 1 / (J M^-1 J^T)
-  // m, the point from each centre of mass: at the step's start, and now (the material
-  // points of the two bodies move apart within the step; the impulse acts at their
-  // midpoint on both, so that it has no moment about any point: momenta are kept)
+  // m, the point from each centre of mass: at the step's start, and now (followPoint:
+  // one point for both bodies, so that the impulse has no moment about any point and
+  // momenta are kept)
   Vec3 rA0 = Vec3::Zero(), rB0 = Vec3::Zero(), rA = Vec3::Zero(), rB = Vec3::Zero();
   double separation = 0.0;  // m, at the step's start (< 0: overlap)
   double lambda = 0.0;      // N s, the sub-step's accumulated impulse (>= 0)
@@ -373,12 +373,15 @@ double closing(const Body& A, const Body& B, const Point& p, const Vec3& n) {
   return n.dot(pb - pa);
 }
 
-// The lever arms to the midpoint of the two bodies' material points of a point that
-// was at rA0 and rB0 at the step's start.
+// The lever arms of a point that was at rA0 and rB0 at the step's start, carried by
+// the two bodies' moves weighted by their inverse masses: on a surface it moves with
+// the body (a rolling or sliding body's contact point travels with it), between two
+// bodies with the lighter one more; both bodies take the impulse at that one point.
 void followPoint(const Body& A, const Body& B, const Vec3& rA0, const Vec3& rB0, Vec3& rA, Vec3& rB) {
-  const Vec3 shift = 0.5 * (A.moved + A.turn * rA0 - rA0 + B.moved + B.turn * rB0 - rB0);
-  rA = rA0 + shift - A.moved;
-  rB = rB0 + shift - B.moved;
+  const double share = B.invMass / (A.invMass + B.invMass);  // of B's move relative to A's
+  const Vec3 apart = B.moved - A.moved;
+  rA = rA0 + share * apart;
+  rB = rB0 - (1.0 - share) * apart;
 }
 
 // Each row's directions at the points as the bodies have moved them (effective masses

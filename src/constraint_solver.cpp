@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <tuple>
 
 #include "contact_rules.h"
@@ -301,28 +300,31 @@ void warmStart(const std::vector<ContactMemory>& memory, Solver& s) {
 
 // ---- the seed's impacts ------------------------------------------------------------
 
-// The seed's impulse at a pair's nearest points merged into one (their centre): j =
+// The seed's impulse at a pair's striking points merged into one (their centre): j =
 // -(1 + xi) v_n m_eff, then a Coulomb friction impulse against the slip, |j_t| <= mu j
-// (static when it stops the slip), when the pair approaches faster than a resting body
-// can and touches or would close its gap within the step. A bouncing pair's impact
+// (static when it stops the slip). A point strikes when it approaches faster than a
+// resting body can and touches or would close its gap within the step (a rocking
+// cube's falling edge, not the edge it pivots on). A bouncing pair's impact
 // was located in time (its gap is closed); an inelastic one is taken at the step's
 // start, up to a step early: it then stops where it is instead of sinking in. One
 // impulse through the patch's centre keeps a face-on impact free of the spin that
 // corner impulses taken in turn would leave. Returns whether the pair struck.
 bool impact(const Manifold& m, const std::vector<Point>& points, double restingSpeed, double h, Solver& s,
             ContactImpulses& out) {
-  double nearest = std::numeric_limits<double>::infinity();
-  for (size_t k = m.first; k < m.first + m.count; ++k) nearest = std::min(nearest, points[k].separation);
-  Vec3 centre = Vec3::Zero();
-  int count = 0;
-  for (size_t k = m.first; k < m.first + m.count; ++k)
-    if (points[k].separation <= nearest + kTouching) centre += points[k].rA, ++count;
   Body& A = s.bodies[m.a];
   Body& B = s.bodies[m.b];
+  Vec3 centre = Vec3::Zero();
+  int count = 0;
+  for (size_t k = m.first; k < m.first + m.count; ++k) {
+    const double approach = velocityAlong(A, B, points[k].n);
+    if (approach < -restingSpeed && points[k].separation <= std::max(kTouching, -approach * h))
+      centre += points[k].rA, ++count;
+  }
+  if (count == 0) return false;
   const Vec3 rA = centre / count, rB = m.rB + (rA - m.rA);
   const Jacobian n = jacobian(A, B, m.normal, rA.cross(m.normal), rB.cross(m.normal));
   const double vn = velocityAlong(A, B, n);
-  if (!(vn < -restingSpeed) || nearest > std::max(kTouching, -vn * h)) return false;
+  if (!(vn < -restingSpeed)) return false;
   const double j = -(1.0 + m.k.xi) * vn / coupling(A, B, n, n);
   applyImpulse(A, B, n, j);
   Vec3 push = j * m.normal;

@@ -26,7 +26,7 @@ namespace rigid {
 
 namespace constraint_solver {
 constexpr int kSubsteps = 4;
-constexpr int kRelaxPasses = 1;
+constexpr int kRelaxPasses = 1;  // docs/decisions/0001-constraint-solver.md: two, measured and not kept
 // Contact softness (Box2D's b2MakeSoft): a natural frequency, as a share of the
 // sub-step rate, and a damping ratio; a point on a surface (infinite mass) is twice as
 // stiff. A quarter of the sub-step rate is Box2D's upper bound, where the soft step

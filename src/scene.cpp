@@ -376,13 +376,12 @@ Scene parseScene(const std::string& text) {
     if (m.tolerance < 0.0) fail("solver.tolerance", "must be >= 0, got " + num(m.tolerance));
     const std::string contacts = s.string("contacts", "manifold");
     if (contacts == "centroid")
+      fail("solver.contacts", "\"centroid\" (the first contact model) was removed; must be \"manifold\"");
+    if (contacts == "soft" || contacts == "newton")
       fail("solver.contacts",
-           "\"centroid\" (the first contact model) was removed; must be \"manifold\", \"soft\" or \"newton\"");
-    if (contacts != "manifold" && contacts != "soft" && contacts != "newton")
-      fail("solver.contacts", "must be \"manifold\", \"soft\" or \"newton\", got \"" + contacts + "\"");
-    m.contacts = contacts == "soft"     ? ContactModel::Soft
-                 : contacts == "newton" ? ContactModel::Newton
-                                        : ContactModel::Manifold;
+           "\"" + contacts + "\" (an experimental contact solver) was removed; must be \"manifold\"");
+    if (contacts != "manifold") fail("solver.contacts", "must be \"manifold\", got \"" + contacts + "\"");
+    m.contacts = ContactModel::Manifold;
     m.energyGainLimit = s.number("energyGainLimit", defaults::kEnergyGainLimit);
     if (m.energyGainLimit < 0.0)
       fail("solver.energyGainLimit", "must be >= 0 (0: unchecked), got " + num(m.energyGainLimit));

@@ -15,11 +15,6 @@
 //     solve ran its passes to the cap, with the points they answered and solved.
 //   BM_PileAwake/<N>: BM_PileManifold with sleep off (solver.sleep false): the solver
 //     alone, every body awake to the end.
-//   BM_PileSoft/<N>: BM_PileManifold answered by the experimental soft sub-steps
-//     (pile_soft_<N>.json, solver.contacts "soft"): a fixed number of passes per solve.
-//   BM_PileNewton/<N>: BM_PileManifold answered by the experimental Newton iterations
-//     (pile_newton_<N>.json, solver.contacts "newton"); its iterations per solve are
-//     Newton iterations, each a factorisation, and its point solves the points times those.
 //   BM_PileWide/<N>: BM_PileManifold on pile_wide_<N>.json, N cubes in columns of the
 //     pile of 100's height: growth from 100 cubes at equal height.
 #include <benchmark/benchmark.h>
@@ -32,7 +27,6 @@
 #include <limits>
 #include <sstream>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "collision_cache.h"
@@ -189,8 +183,7 @@ struct Window {
   rigid::StepProfile profile;
   long steps = 0;
   // the steps whose solve ran the manifold solver's passes to their cap (some island had
-  // not settled), and the points they answered and solved (the soft and Newton piles
-  // count other iterations: the report reads these of the manifold piles only)
+  // not settled), and the points they answered and solved
   long stepsAtCap = 0, pointsAtCap = 0, rowSolvesAtCap = 0;
   void add(double cpuSeconds, double wallNs, const rigid::StepProfile& before, const rigid::StepProfile& after) {
     cpu += cpuSeconds;
@@ -320,12 +313,6 @@ int main(int argc, char** argv) {
     for (bool sleep : {true, false})
       benchmark::RegisterBenchmark(((sleep ? "BM_PileManifold/" : "BM_PileAwake/") + std::to_string(n)).c_str(),
                                    pileManifold, "pile_manifold_" + std::to_string(n) + ".json", sleep)
-          ->Unit(benchmark::kMillisecond)
-          ->Iterations(1);
-  for (const auto& [name, contacts] : {std::pair{"Soft", "soft"}, std::pair{"Newton", "newton"}})
-    for (int n : {10, 100, 1000})
-      benchmark::RegisterBenchmark(("BM_Pile" + std::string(name) + "/" + std::to_string(n)).c_str(), pileManifold,
-                                   "pile_" + std::string(contacts) + "_" + std::to_string(n) + ".json", true)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
   // the wide pile's count: bench.py's WIDE_PILE

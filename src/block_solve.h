@@ -3,8 +3,7 @@
 // or more solved at once, exactly, to each row's target normal velocity (a heavy box on
 // a light one: Gauss-Seidel passes carry the load down at a rate of the mass ratio per
 // pass, and 1e6 does not converge in any number of passes). Used by the contact
-// solver's passes (contact_solver.cpp) and the soft sub-steps (soft_contacts.cpp).
-// Internal to the contact solver.
+// solver's passes (contact_solver.cpp). Internal to the contact solver.
 #pragma once
 
 #include "contact_rows.h"

@@ -1,7 +1,6 @@
 // Impacts as the seed answers them: the touching points of a pair merged into one, and
 // the seed's impulse j with restitution xi (and a Coulomb friction impulse) at it. Used
-// before the solve (contact_solver.cpp, answerImpacts) and, for the soft sub-steps, in
-// each sub-step (soft_contacts.cpp). Internal to the contact solver.
+// before the solve (contact_solver.cpp, answerImpacts). Internal to the contact solver.
 #pragma once
 
 #include <utility>

@@ -1,6 +1,7 @@
 // The contact solver's rows and bodies, and its work buffers (ContactScratch): what
-// contact_solver.cpp (the solve) and soft_contacts.cpp (its sub-stepped soft stage)
-// share. Internal to the two; nothing outside them sees these types.
+// contact_solver.cpp (the solve) and its stages (block_solve, coarse_correction,
+// contact_impacts, shock_propagation) share. Internal to the contact solver; nothing
+// outside it sees these types.
 #pragma once
 
 #include <algorithm>
@@ -15,7 +16,6 @@
 #include "collision_detection.h"
 #include "contact_solver.h"
 #include "islands.h"
-#include "newton_contacts.h"
 
 namespace rigid {
 namespace contact_rows {
@@ -73,19 +73,6 @@ struct Row {
   bool atLimit = false;        // its friction on the edge of its disc when the solve ended (markLimits)
   Vec3 localA = Vec3::Zero();  // m, the point in body a's frame (matches last step's points)
   const Contact* contact = nullptr;
-  double sumN = 0.0, sumT1 = 0.0, sumT2 = 0.0;     // soft sub-steps: the impulses summed over them
-  double warmN = 0.0, warmT1 = 0.0, warmT2 = 0.0;  // soft sub-steps: the last sub-step's, to start the next
-};
-
-// The soft stage's view of one body (soft_contacts.cpp): the free motion the integrator
-// gave it over the step, and what the contact impulses have moved it beyond that.
-struct SubstepBody {
-  Vec3 v = Vec3::Zero(), w = Vec3::Zero();          // velocities of the free motion at the step's start
-  Vec3 dv = Vec3::Zero(), dw = Vec3::Zero();        // the applied forces' velocity change per sub-step
-  Vec3 kick = Vec3::Zero(), spin = Vec3::Zero();    // the impacts' velocity change
-  Vec3 drift = Vec3::Zero(), twist = Vec3::Zero();  // m, rad per sub-step: the integrator's free motion beyond that
-  double kickMoves = 1.0;                           // the share of h times the kick that moves the body (limitKicks)
-  Vec3 move = Vec3::Zero(), turn = Vec3::Zero();    // m, rad: displacement by the contact impulses so far
 };
 
 }  // namespace contact_rows
@@ -95,7 +82,6 @@ struct SubstepBody {
 struct ContactScratch {
   using SolverBody = contact_rows::SolverBody;
   using Row = contact_rows::Row;
-  using SubstepBody = contact_rows::SubstepBody;
   std::vector<SolverBody> bodies;  // one per body, then the static slot
   std::vector<char> involved;      // bodies that some row touches
   std::vector<Row> rows;
@@ -115,9 +101,6 @@ struct ContactScratch {
   Eigen::LDLT<Eigen::MatrixXd> factors;                // solveBlock: of `regular`
   std::vector<int> level;                              // shockPass: each body's height in the support graph
   std::vector<size_t> climb;                           // shockPass: the rows between levels, lowest first
-  std::vector<SubstepBody> substep;                    // soft_contacts: each body's free motion and move
-  std::vector<size_t> fresh;                           // soft_contacts: the rows new this step
-  NewtonScratch newton;                                // newton_contacts: its unknowns and factors
   contact_rows::CoarseScratch coarse;                  // coarse_correction: its islands, pairs and factors
   int staticSlot() const { return static_cast<int>(bodies.size()) - 1; }
 };
@@ -218,8 +201,7 @@ inline void clampToDisc(double& l1, double& l2, double limit) {
 inline double frictionLimit(const Row& r) { return (r.sliding ? r.k.muk : r.k.mus) * r.lambdaN; }
 
 // Each row's friction marked on the edge of its disc or inside it, from the impulses of
-// the solve's last pass (the soft sub-steps mark them before summing the sub-steps'
-// impulses, whose directions turn with a spinning body).
+// the solve's last pass.
 inline void markLimits(Solver& s) {
   for (Row& r : s.rows) r.atLimit = length(r.lambdaT1, r.lambdaT2) >= (1.0 - 1e-9) * frictionLimit(r);
 }

@@ -13,9 +13,7 @@
 #include "contact_impacts.h"
 #include "contact_rows.h"
 #include "contact_rules.h"
-#include "newton_contacts.h"
 #include "shock_propagation.h"
-#include "soft_contacts.h"
 
 namespace rigid {
 
@@ -101,15 +99,11 @@ void prepareRows(const WorldModel& model, const std::vector<Contact>& contacts, 
 // Impacts as the seed answers them, before the solve and outside its accumulated
 // impulses (which would take a bounce back): passes over the pairs while one of them
 // approaches faster than a resting body can, so that a chain of touching bodies passes
-// an impact on (Newton's cradle). Returns the passes taken. The soft sub-steps answer
-// only the bouncing pairs (xi > 0) here: an inelastic landing is stopped within their
-// sub-steps, where the seed's impulse at the step's end left the body sunk by the
-// step's travel (2 mm in a falling pile of 100, 0.4 mm without).
+// an impact on (Newton's cradle). Returns the passes taken.
 int answerImpacts(Solver& s, const ContactStep& step, std::vector<SurfacePush>& pushes) {
-  const bool inelastic = step.model != ContactModel::Soft;
-  auto striking = [&](const Row& r, double vrel) { return vrel < -step.restingSpeed && (inelastic || r.k.xi > 0.0); };
+  auto striking = [&](double vrel) { return vrel < -step.restingSpeed; };
   const bool any = std::any_of(s.rows.begin(), s.rows.end(), [&](const Row& r) {
-    return r.depth >= -kTouching && striking(r, relativeVelocity(s, r, r.n));
+    return r.depth >= -kTouching && striking(relativeVelocity(s, r, r.n));
   });
   if (!any) return 0;
   impactRows(s, s.impacts, s.impactPairs);
@@ -119,7 +113,7 @@ int answerImpacts(Solver& s, const ContactStep& step, std::vector<SurfacePush>& 
     struck = false;
     for (const Row& r : rows) {
       const double vrel = relativeVelocity(s, r, r.n);
-      if (!striking(r, vrel)) continue;
+      if (!striking(vrel)) continue;
       impact(s, r, vrel, pushes);
       struck = true;
     }
@@ -148,10 +142,9 @@ void remember(const ContactMemory& m, Row& r) {
 }
 
 // Each row takes the impulses of last step's nearest point of the same pair (body a's
-// frame, within kMatchDistance), each old point used once (applyWarmStart applies them:
-// the soft sub-steps apply their share in each sub-step instead). Rows and
-// memory are both in the detector's pair order: one search per pair. A body sticks or
-// slides as a whole, so a pair's new points take its remembered state.
+// frame, within kMatchDistance), each old point used once (applyWarmStart applies them).
+// Rows and memory are both in the detector's pair order: one search per pair. A body
+// sticks or slides as a whole, so a pair's new points take its remembered state.
 void warmStart(const std::vector<ContactMemory>& memory, Solver& s) {
   s.used.assign(memory.size(), 0);
   auto before = [](const ContactMemory& m, const std::tuple<int, int, int>& key) {
@@ -452,26 +445,14 @@ ContactSolveReport solveContacts(const WorldModel& model, const std::vector<Cont
   report.points = static_cast<int>(s.rows.size());
   markVelocities(s);
   report.impactPasses = answerImpacts(s, step, pushes);
-  const bool soft = step.model == ContactModel::Soft;
-  if (soft) beginSubsteps(model, step, Y, s);
   warmStart(memory, s);
-  if (soft) {
-    solveSubsteps(step, s, report, pushes);
-    storeMomenta(model, s, Y);
-    moveBySubsteps(s, Y);
-  } else {
-    if (step.model == ContactModel::Newton) {
-      solveNewton(s, report);
-    } else {
-      applyWarmStart(s);
-      coarseCorrection(s, step.restingSpeed);
-      solveVelocities(s, report);
-      shockPass(s);
-    }
-    storeMomenta(model, s, Y);
-    correctPositions(s, step, Y);
-    markLimits(s);
-  }
+  applyWarmStart(s);
+  coarseCorrection(s, step.restingSpeed);
+  solveVelocities(s, report);
+  shockPass(s);
+  storeMomenta(model, s, Y);
+  correctPositions(s, step, Y);
+  markLimits(s);
   store(s, std::max(kVelocityTolerance, 0.01 * step.restingSpeed), memory);
   pushSurfaces(s, pushes);
   return report;

@@ -1,9 +1,7 @@
-// The contact solver (solver.contacts = "manifold", the default; "soft" swaps its velocity
-// and position stages for soft_contacts.h's experimental sub-steps; "newton" its
-// velocities and shock stages for newton_contacts.h's experimental Newton iterations):
-// one pipeline for every touching pair, body-body and body-surface, a surface being a
-// static box of infinite mass. Each pair brings the points of its contact patch (up
-// to 4, the detector's manifold); the solver answers all of them together:
+// The contact solver (solver.contacts = "manifold", the default): one pipeline for
+// every touching pair, body-body and body-surface, a surface being a static box of
+// infinite mass. Each pair brings the points of its contact patch (up to 4, the
+// detector's manifold); the solver answers all of them together:
 //   impacts      the seed's impulse j with restitution xi, pass after pass while some
 //                pair approaches faster than a resting body can (Newton's cradle);
 //   warm start   last step's accumulated impulses of the points that are still there;
@@ -34,10 +32,6 @@ struct ContactStep {
   // Share of h times the solve's velocity change that moves the bodies: the share by
   // which the integrator moves a body under a constant force (constantForceDisplacement).
   double moveShare = 0.5;
-  ContactModel model = ContactModel::Manifold;  // the velocities' stage: passes, soft sub-steps or Newton
-  // Y at the step's start (the soft sub-steps spread the applied forces' change of the
-  // velocities over the step); none: the velocities are taken as the step's throughout.
-  const std::vector<BodyState>* start = nullptr;
 };
 
 // What a solve gave one surface through one body's points (impulses, impacts
@@ -91,20 +85,6 @@ constexpr double kSlop = 1e-4;           // m, overlap left alone (a resting bod
 constexpr double kBaumgarte = 0.2;       // share of the overlap beyond the slop removed per step
 constexpr double kMaxPushOut = 1.0;      // m/s, cap of the position correction's speed
 constexpr double kMatchDistance = 0.01;  // m: a point within this of last step's (body a's frame) is the same
-// Soft sub-steps (solver.contacts = "soft", soft_contacts.h): the sub-steps of a step,
-// the passes with the soft bias and without it (relax) in each, the contact's natural
-// frequency as a share of the sub-step rate, its damping ratio, and the overlap it
-// holds rigidly before the spring takes over. A tenth of the sub-step rate with a 5 um
-// slop put the pile of 1000 to sleep by 2 s; a quarter (Box2D's upper bound, omega h_sub
-// = pi / 2) left it at 2.4 cm/s at 3 s, and with the default's 0.1 mm slop (a damper
-// within it) a box on a ramp just below its static limit crept.
-constexpr int kSoftSubsteps = 4;
-constexpr int kSoftSolvePasses = 2;
-constexpr int kSoftRelaxPasses = 2;
-constexpr int kSoftFreshRelaxPasses = 16;  // the first sub-step's, in a step with new points
-constexpr double kSoftFrequencyShare = 0.1;
-constexpr double kSoftDampingRatio = 10.0;
-constexpr double kSoftSlop = 5e-6;  // m
 }  // namespace contact_solver
 
 // The solver's work buffers (contact_solver.cpp), kept from one solve to the next.

@@ -376,15 +376,13 @@ Scene parseScene(const std::string& text) {
     if (m.tolerance < 0.0) fail("solver.tolerance", "must be >= 0, got " + num(m.tolerance));
     const std::string contacts = s.string("contacts", "manifold");
     if (contacts == "centroid")
+      fail("solver.contacts", "\"centroid\" (the first contact model) was removed; must be \"manifold\"");
+    if (contacts == "soft" || contacts == "newton")
       fail("solver.contacts",
-           "\"centroid\" (the first contact model) was removed; must be \"manifold\", \"soft\" or \"newton\"");
-    if (contacts != "manifold" && contacts != "soft" && contacts != "newton" && contacts != "substep")
-      fail("solver.contacts",
-           "must be \"manifold\", \"soft\", \"newton\" or \"substep\", got \"" + contacts + "\"");
-    m.contacts = contacts == "soft"      ? ContactModel::Soft
-                 : contacts == "newton"  ? ContactModel::Newton
-                 : contacts == "substep" ? ContactModel::Substep
-                                         : ContactModel::Manifold;
+           "\"" + contacts + "\" (an experimental contact solver) was removed; must be \"manifold\" or \"substep\"");
+    if (contacts != "manifold" && contacts != "substep")
+      fail("solver.contacts", "must be \"manifold\" or \"substep\", got \"" + contacts + "\"");
+    m.contacts = contacts == "substep" ? ContactModel::Substep : ContactModel::Manifold;
     m.energyGainLimit = s.number("energyGainLimit", defaults::kEnergyGainLimit);
     if (m.energyGainLimit < 0.0)
       fail("solver.energyGainLimit", "must be >= 0 (0: unchecked), got " + num(m.energyGainLimit));

@@ -1,7 +1,7 @@
 // Shock propagation (Guendelman, Bridson and Fedkiw, 2003): a sweep over the touching
 // points from the surfaces upwards, each point's lower body held as if infinitely heavy.
-// The contact solver's stage after its passes (contact_solver.cpp) and the soft
-// sub-steps' after their last relax (soft_contacts.cpp). Internal to the contact solver.
+// The contact solver's stage after its passes (contact_solver.cpp). Internal to the
+// contact solver.
 #pragma once
 
 #include "contact_rows.h"

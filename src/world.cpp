@@ -237,7 +237,7 @@ double locateImpact(StepContext& s, double tau, std::vector<BodyState>& next) {
 // Contact response: what happens at an instant rather than over the step. Every
 // contact in the collision cache (detected for `after`), body-body and body-surface,
 // in one solve: manifolds, warm start, impulses, positions, store (contact_solver.h).
-void respondToContacts(StepContext& s, std::vector<BodyState>& after, double taken) {
+void respondToContacts(StepContext& s, std::vector<BodyState>& after) {
   const SleepState& sleep = s.data.sleep;
   for (size_t i = 0; i < s.data.contacts.size(); ++i)
     if (!sleep.asleep[i]) s.data.contacts[i] = 0;  // a sleeping body keeps its count
@@ -245,12 +245,7 @@ void respondToContacts(StepContext& s, std::vector<BodyState>& after, double tak
     CollisionCache* c = s.data.collision.get();
     if (!c) return;
     Stopwatch response(slotOf(s.data, &StepProfile::response));
-    // the soft sub-steps cut the interval the integrator took (shorter than h in a step
-    // cut at a located impact) and move the bodies over it; the default keeps h
-    const double h = s.model.contacts == ContactModel::Soft ? taken : s.h;
-    ContactStep step{h, restingNormalSpeed(s.model.gravity, h), constantForceDisplacement(s.model.method)};
-    step.model = s.model.contacts;
-    step.start = &s.data.Y;  // not yet committed: the state the step started from
+    const ContactStep step{s.h, restingNormalSpeed(s.model.gravity, s.h), constantForceDisplacement(s.model.method)};
     setAsideSleeping(sleep, s.data.contactMemory, *c);
     c->Pbefore.resize(after.size());
     c->Lbefore.resize(after.size());
@@ -500,7 +495,7 @@ StepResult stepOnce(StepContext& s) {
       if (!impactIn(s, s.data.Y)) taken = locateImpact(s, rest, next);
       detectContacts(s, next, speculativeMargin(s, next));  // the cache held other states' contacts
     }
-    respondToContacts(s, next, taken);
+    respondToContacts(s, next);
     if (const StepResult r = commit(s.model, s.data, next, s.h); !r.ok) return r;
     if constexpr (modules::kCollisions) addLoadsAndSleep(s, taken);
     s.data.steps += steps;

@@ -18,9 +18,9 @@ namespace rigid {
 struct CollisionCache;  // collision_cache.h: the FCL detector and its contacts
 
 // The contact solver (solver.contacts; contact_solver.h): Gauss-Seidel passes to a
-// tolerance (the default), sub-stepped soft contacts with a fixed cost per step, or
-// Newton iterations on every point at once (experimental, newton_contacts.h).
-enum class ContactModel { Manifold, Soft, Newton, Substep };
+// tolerance (the default), or the constraint solver's sub-steps (constraint_solver.h;
+// "substep", to become the only one).
+enum class ContactModel { Manifold, Substep };
 
 // Constants of one scene. Parameters of the FMU (mass, gravity, method, ...) change
 // them only between runs or, for tunable ones, between communication steps.

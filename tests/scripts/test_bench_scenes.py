@@ -31,13 +31,6 @@ def test_columns_of_four_lay_out_the_pile_of_100_as_before():
     assert len({round(p[2], 9) for p, _ in bench.pile_layout(1000)}) == 10  # the tall pile: columns of 10
 
 
-@pytest.mark.parametrize("contacts", ["soft", "newton"])
-def test_experimental_piles_differ_from_the_manifold_pile_in_their_solver_only(contacts):
-    other, manifold = bench.pile_experimental_scene(100, contacts), bench.pile_manifold_scene(100)
-    assert other["solver"] == dict(manifold["solver"], contacts=contacts)
-    assert other["bodies"] == manifold["bodies"] and other["surfaces"] == manifold["surfaces"]
-
-
 def test_another_tilt_pattern_moves_no_cube_and_turns_them_otherwise():
     base, other = bench.pile_layout(1000), bench.pile_layout(1000, tilt=(1.3, 2.9))
     assert [p for p, _ in other] == [p for p, _ in base]

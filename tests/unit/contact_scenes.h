@@ -61,8 +61,8 @@ inline json box(const std::string& name, const Vec3& size, const Vec3& position,
 // Sleep is off: the solver's tests judge its own rest, and a sleeping island would hide
 // a pile that the solver leaves creeping slower than the sleep speed (test_sleep.cpp
 // sets it on). The contact solver is the default unless RIGID_CONTACTS names another
-// ("soft"): `RIGID_CONTACTS=soft build/rigid_unit_tests` holds the experimental solver
-// to every contact test.
+// (solver.contacts; only "manifold" for now): `RIGID_CONTACTS=<name>
+// build/rigid_unit_tests` holds that solver to every contact test.
 inline json sceneOf(const json& bodies, const json& surfaces, double step = 1e-3, const char* method = "rk4") {
   auto list = [](const json& j) { return j.is_array() ? j : json::array({j}); };
   return {{"name", "T"},

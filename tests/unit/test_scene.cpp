@@ -129,21 +129,27 @@ TEST(Scene, UnknownSolverField) {
                      "sleepSpeed, sleepTime)");
 }
 
-TEST(Scene, ContactSolverIsManifoldSoftOrNewton) {
+TEST(Scene, ContactSolverIsManifold) {
   EXPECT_EQ(rigid::parseScene(sceneWith("", "")).model.contacts, rigid::ContactModel::Manifold);
   EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "manifold"}, )")).model.contacts,
             rigid::ContactModel::Manifold);
-  EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "soft"}, )")).model.contacts,
-            rigid::ContactModel::Soft);
-  EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "newton"}, )")).model.contacts,
-            rigid::ContactModel::Newton);
   EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "substep"}, )")).model.contacts,
             rigid::ContactModel::Substep);
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "centroid"}, )"),
-                     "solver.contacts: \"centroid\" (the first contact model) was removed; must be \"manifold\", "
-                     "\"soft\" or \"newton\"");
+                     "solver.contacts: \"centroid\" (the first contact model) was removed; must be \"manifold\"");
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "penalty"}, )"),
-                     "solver.contacts: must be \"manifold\", \"soft\", \"newton\" or \"substep\", got \"penalty\"");
+                     "solver.contacts: must be \"manifold\" or \"substep\", got \"penalty\"");
+}
+
+// The experimental solvers "soft" (sub-stepped soft contacts) and "newton" (Newton
+// iterations) were removed: a scene that names one is refused, saying so.
+TEST(Scene, RemovedExperimentalContactSolversAreRefused) {
+  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "soft"}, )"),
+                     "solver.contacts: \"soft\" (an experimental contact solver) was removed; must be \"manifold\" or "
+                     "\"substep\"");
+  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "newton"}, )"),
+                     "solver.contacts: \"newton\" (an experimental contact solver) was removed; must be "
+                     "\"manifold\" or \"substep\"");
 }
 
 TEST(Scene, SleepRules) {

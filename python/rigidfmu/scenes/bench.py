@@ -5,14 +5,10 @@ piles are written twice, the second naming the contact solver ("manifold", the
 default), for the benchmarks that time them over 1 s (BM_Pile) and 3 s
 (BM_PileManifold). A third, wide pile (BM_PileWide) has as many cubes as the largest
 but in columns as short as the pile of 100's, so that the growth from 100 cubes can be
-read at equal height as well as at the growing height of the cube-root piles. The piles
-are written a third time naming the experimental soft sub-steps ("soft", BM_PileSoft),
-and a fourth naming the experimental Newton iterations ("newton", BM_PileNewton).
+read at equal height as well as at the growing height of the cube-root piles.
 
   python -m rigidfmu.scenes.bench DIR    writes DIR/free_<N>.json, DIR/pile_<N>.json,
-                                         DIR/pile_manifold_<N>.json,
-                                         DIR/pile_soft_<N>.json,
-                                         DIR/pile_newton_<N>.json and
+                                         DIR/pile_manifold_<N>.json and
                                          DIR/pile_wide_<N>.json
   python -m rigidfmu.scenes.bench DIR --tilt A,B
                                          the same with the piles' cubes tilted by another
@@ -95,16 +91,6 @@ def pile_manifold_scene(n, tilt=TILT):
     return scene
 
 
-def pile_experimental_scene(n, contacts, tilt=TILT):
-    """pile_scene(n) answered by an experimental contact solver (solver.contacts "soft",
-    the sub-steps, or "newton", the Newton iterations): only the solver differs from
-    pile_manifold_scene(n)."""
-    scene = pile_scene(n, tilt=tilt)
-    scene["name"] = f"Pile{contacts.capitalize()}{n}"
-    scene["solver"] = dict(scene["solver"], contacts=contacts)
-    return scene
-
-
 def pile_wide_scene(n, tilt=TILT):
     """pile_manifold_scene(n) laid out in columns of WIDE_LAYERS cubes (the pile of
     100's height): the same cubes, floor, step and solver, only the layout differs."""
@@ -122,8 +108,6 @@ def write(directory, tilt=TILT):
     for n in PILE_COUNTS:
         (d / f"pile_{n}.json").write_text(json.dumps(pile_scene(n, tilt=tilt)))
         (d / f"pile_manifold_{n}.json").write_text(json.dumps(pile_manifold_scene(n, tilt)))
-        for contacts in ("soft", "newton"):
-            (d / f"pile_{contacts}_{n}.json").write_text(json.dumps(pile_experimental_scene(n, contacts, tilt)))
     (d / f"pile_wide_{WIDE_PILE}.json").write_text(json.dumps(pile_wide_scene(WIDE_PILE, tilt)))
 
 

@@ -15,6 +15,9 @@
 //     solve ran its passes to the cap, with the points they answered and solved.
 //   BM_PileAwake/<N>: BM_PileManifold with sleep off (solver.sleep false): the solver
 //     alone, every body awake to the end.
+//   BM_PileSubstep/<N>, BM_PileSubstepAwake/<N>: BM_PileManifold and BM_PileAwake on
+//     pile_substep_<N>.json, the pile answered by the constraint solver on trial
+//     (solver.contacts "substep"; its solves take no counted iterations).
 //   BM_PileWide/<N>: BM_PileManifold on pile_wide_<N>.json, N cubes in columns of the
 //     pile of 100's height: growth from 100 cubes at equal height.
 #include <benchmark/benchmark.h>
@@ -313,6 +316,12 @@ int main(int argc, char** argv) {
     for (bool sleep : {true, false})
       benchmark::RegisterBenchmark(((sleep ? "BM_PileManifold/" : "BM_PileAwake/") + std::to_string(n)).c_str(),
                                    pileManifold, "pile_manifold_" + std::to_string(n) + ".json", sleep)
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(1);
+  for (int n : {10, 100, 1000})
+    for (bool sleep : {true, false})
+      benchmark::RegisterBenchmark(((sleep ? "BM_PileSubstep/" : "BM_PileSubstepAwake/") + std::to_string(n)).c_str(),
+                                   pileManifold, "pile_substep_" + std::to_string(n) + ".json", sleep)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
   // the wide pile's count: bench.py's WIDE_PILE

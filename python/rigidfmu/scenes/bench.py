@@ -91,6 +91,15 @@ def pile_manifold_scene(n, tilt=TILT):
     return scene
 
 
+def pile_substep_scene(n, tilt=TILT):
+    """pile_manifold_scene(n) answered by the constraint solver on trial (solver.contacts
+    "substep", docs/decisions/0001-constraint-solver.md): only the solver differs."""
+    scene = pile_scene(n, tilt=tilt)
+    scene["name"] = f"PileSubstep{n}"
+    scene["solver"] = dict(scene["solver"], contacts="substep")
+    return scene
+
+
 def pile_wide_scene(n, tilt=TILT):
     """pile_manifold_scene(n) laid out in columns of WIDE_LAYERS cubes (the pile of
     100's height): the same cubes, floor, step and solver, only the layout differs."""
@@ -108,6 +117,7 @@ def write(directory, tilt=TILT):
     for n in PILE_COUNTS:
         (d / f"pile_{n}.json").write_text(json.dumps(pile_scene(n, tilt=tilt)))
         (d / f"pile_manifold_{n}.json").write_text(json.dumps(pile_manifold_scene(n, tilt)))
+        (d / f"pile_substep_{n}.json").write_text(json.dumps(pile_substep_scene(n, tilt)))
     (d / f"pile_wide_{WIDE_PILE}.json").write_text(json.dumps(pile_wide_scene(WIDE_PILE, tilt)))
 
 

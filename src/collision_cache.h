@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "collision_detection.h"
-#include "contact_memory.h"
 #include "constraint_solver.h"
+#include "contact_memory.h"
 #include "contact_solver.h"
 
 namespace rigid {

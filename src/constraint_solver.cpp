@@ -38,7 +38,7 @@ Softness makeSoft(double hertz, double zeta, double h) {
 // mass or inertia, never moves).
 struct Body {
   double invMass = 0.0;
-  Mat3 invInertia = Mat3::Zero();  // 1/(kg m^2), world frame, at the step's start
+  Mat3 invInertia = Mat3::Zero();             // 1/(kg m^2), world frame, at the step's start
   Vec3 v = Vec3::Zero(), w = Vec3::Zero();    // velocities now
   Vec3 v0 = Vec3::Zero(), w0 = Vec3::Zero();  // at the step's start
   Vec3 dv = Vec3::Zero(), dw = Vec3::Zero();  // the applied forces' velocity change in a sub-step
@@ -96,7 +96,7 @@ Vec3 anyPerpendicular(const Vec3& u) {
 // One contact point's normal row.
 struct Point {
   Jacobian n;
-  double mass = 0.0;        // 1 / (J M^-1 J^T)
+  double mass = 0.0;  // 1 / (J M^-1 J^T)
   // m, the point from each centre of mass: at the step's start, and now (followPoint:
   // one point for both bodies, so that the impulse has no moment about any point and
   // momenta are kept)
@@ -110,19 +110,19 @@ struct Point {
 
 // One touching pair: its points, and its friction at the centre of the patch.
 struct Manifold {
-  int a = 0, b = 0, surface = -1;  // solver bodies; b is the static slot on a surface
-  size_t first = 0, count = 0;     // its points in ConstraintScratch::points
-  Vec3 normal = Vec3::Zero();      // unit, from a to b
+  int a = 0, b = 0, surface = -1;               // solver bodies; b is the static slot on a surface
+  size_t first = 0, count = 0;                  // its points in ConstraintScratch::points
+  Vec3 normal = Vec3::Zero();                   // unit, from a to b
   Vec3 rA0 = Vec3::Zero(), rB0 = Vec3::Zero();  // m, the patch's centre from each centre of mass, at the start
   Vec3 rA = Vec3::Zero(), rB = Vec3::Zero();    // m, and now (as Point's)
   Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();    // the tangents, fixed over the step
-  Jacobian friction[3];            // two tangents at the centre, and the twist about the normal
-  Mat3 frictionMass = Mat3::Zero();  // (J M^-1 J^T)^-1 over the three
-  double radius = 0.0;             // m, the patch radius (Contact::patchRadius): the twist's lever
+  Jacobian friction[3];                         // two tangents at the centre, and the twist about the normal
+  Mat3 frictionMass = Mat3::Zero();             // (J M^-1 J^T)^-1 over the three
+  double radius = 0.0;                          // m, the patch radius (Contact::patchRadius): the twist's lever
   Coefficients k;
   Softness soft;
-  bool sliding = false;  // friction bounded by mu_k (else mu_s) for the whole step
-  bool atLimit = false;  // its friction on the edge of its bound after the last pass
+  bool sliding = false;                              // friction bounded by mu_k (else mu_s) for the whole step
+  bool atLimit = false;                              // its friction on the edge of its bound after the last pass
   Vec3 lambda = Vec3::Zero(), total = Vec3::Zero();  // (t1, t2, twist) impulses, as the points'
 };
 
@@ -293,8 +293,9 @@ void warmStart(const std::vector<ContactMemory>& memory, Solver& s) {
       matched = true;
     }
     if (!matched) continue;
-    m.lambda = Vec3(tangent.dot(m.friction[0].linear), tangent.dot(m.friction[1].linear), m.radius > 0.0 ? twist : 0.0) /
-               kSubsteps;
+    m.lambda =
+        Vec3(tangent.dot(m.friction[0].linear), tangent.dot(m.friction[1].linear), m.radius > 0.0 ? twist : 0.0) /
+        kSubsteps;
   }
 }
 
@@ -447,7 +448,8 @@ void solveFriction(Solver& s, Manifold& m) {
                       velocityAlong(A, B, m.friction[2]));
   Vec3 lambda = m.lambda - m.frictionMass * velocity;
   const double r = m.radius > 0.0 ? m.radius : 1.0;
-  const double size = std::sqrt(lambda.x() * lambda.x() + lambda.y() * lambda.y() + (lambda.z() / r) * (lambda.z() / r));
+  const double size =
+      std::sqrt(lambda.x() * lambda.x() + lambda.y() * lambda.y() + (lambda.z() / r) * (lambda.z() / r));
   m.atLimit = size >= (1.0 - 1e-9) * bound;
   if (size > bound) lambda *= bound / size;
   for (int x = 0; x < 3; ++x) applyImpulse(A, B, m.friction[x], lambda[x] - m.lambda[x]);
@@ -527,8 +529,8 @@ void pushSurfaces(const Solver& s, ContactImpulses& out) {
 // The moved bodies into next, and what contact gave each: the momenta change by the
 // velocity change (I at the step's start, the inertia the solve used), less the
 // applied forces' share.
-void commitBodies(const WorldModel& model, const WorldData& data, const Solver& s,
-                  std::vector<BodyState>& next, ContactImpulses& out) {
+void commitBodies(const WorldModel& model, const WorldData& data, const Solver& s, std::vector<BodyState>& next,
+                  ContactImpulses& out) {
   for (int i : s.moving) {
     const Body& b = s.bodies[i];
     const BodyConstants& constants = model.bodies[i];

@@ -447,8 +447,8 @@ StepResult stepOnceWithConstraints(StepContext& s, CollisionCache& c) {
     double taken = rest;
     if (steps > 0 && firstNonFinite(next) < 0 && impacts < kMaxImpactsPerStep && s.bouncy && impactIn(s, next))
       taken = locateImpactWithConstraints(s, c, rest, next);
-    std::swap(c.contacts, c.stepContacts);  // the step's contacts, for sleep
-    std::swap(s.data.contactMemory, c.storedMemory);
+    std::swap(c.contacts, c.stepContacts);                           // the step's contacts, for sleep
+    if (steps > 0) std::swap(s.data.contactMemory, c.storedMemory);  // else no solve stored any
     mergeBackSleeping(s.data.contactMemory, c);
     if (steps == 0) return failed(-1);
     if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);

@@ -116,8 +116,8 @@ TEST(ConstraintSolver, SphereSlippingOnAPlankKeepsThePairsHorizontalMomentum) {
   const Eigen::Vector2d start = horizontal();
   sim.run(0.5);
   const Vec3 slip = sim.data.aux[1].V + sim.data.aux[1].omega.cross(Vec3(0, 0, -0.1)) - sim.data.aux[0].V;
-  std::printf("momentum change %.3g of %.3g; slip at the end %.3g m/s\n", (horizontal() - start).norm(),
-              start.norm(), slip.head<2>().norm());
+  std::printf("momentum change %.3g of %.3g; slip at the end %.3g m/s\n", (horizontal() - start).norm(), start.norm(),
+              slip.head<2>().norm());
   EXPECT_LT((horizontal() - start).norm(), 1e-12 * start.norm());
   EXPECT_GT((sim.data.aux[0].V.head<2>()).norm(), 0.01);  // the plank was set moving
 }
@@ -125,13 +125,13 @@ TEST(ConstraintSolver, SphereSlippingOnAPlankKeepsThePairsHorizontalMomentum) {
 // Two spinning boxes with friction meet obliquely in free space: linear momentum and
 // angular momentum about the origin are kept to rounding.
 TEST(ConstraintSolver, TwoBodiesCollidingInFreeSpaceKeepTheirMomenta) {
-  json a = box("a", Vec3(0.3, 0.2, 0.1), Vec3(0, 0, 0), Quat(Eigen::AngleAxisd(0.4, Vec3(1, 2, 0).normalized())),
-               0.0, 0.8, 0.6);
+  json a = box("a", Vec3(0.3, 0.2, 0.1), Vec3(0, 0, 0), Quat(Eigen::AngleAxisd(0.4, Vec3(1, 2, 0).normalized())), 0.0,
+               0.8, 0.6);
   a["mass"] = 2.0;
   a["velocity"] = {1.0, 0.1, 0.05};
   a["angularVelocity"] = {1.0, -2.0, 3.0};
-  json b = box("b", Vec3(0.2, 0.2, 0.2), Vec3(0.45, 0.05, 0.03), Quat(Eigen::AngleAxisd(-0.3, Vec3::UnitZ())), 0.0,
-               0.8, 0.6);
+  json b = box("b", Vec3(0.2, 0.2, 0.2), Vec3(0.45, 0.05, 0.03), Quat(Eigen::AngleAxisd(-0.3, Vec3::UnitZ())), 0.0, 0.8,
+               0.6);
   b["velocity"] = {-1.0, 0.0, 0.1};
   b["angularVelocity"] = {0.0, 4.0, -1.0};
   json scene = constraints(sceneOf(json::array({a, b}), json::array()));
@@ -145,10 +145,10 @@ TEST(ConstraintSolver, TwoBodiesCollidingInFreeSpaceKeepTheirMomenta) {
   const Vec3 P0 = linear(), L0 = angular();
   const Vec3 Pa = sim.data.Y[0].P;
   sim.run(0.5);
-  std::printf("linear %.3g of %.3g, angular %.3g of %.3g\n", (linear() - P0).norm(), P0.norm(),
-              (angular() - L0).norm(), L0.norm());
+  std::printf("linear %.3g of %.3g, angular %.3g of %.3g\n", (linear() - P0).norm(), P0.norm(), (angular() - L0).norm(),
+              L0.norm());
   EXPECT_GT((sim.data.Y[0].P - Pa).norm(), 0.5);  // they met
-  const double scale = 2.0 * 1.0;                  // kg m/s, the larger body's momentum
+  const double scale = 2.0 * 1.0;                 // kg m/s, the larger body's momentum
   EXPECT_LT((linear() - P0).norm(), 1e-12 * scale);
   EXPECT_LT((angular() - L0).norm(), 1e-12 * (scale * 0.5 + L0.norm()));
 }
@@ -176,15 +176,12 @@ double rampError(const std::string& shape, double h) {
   const double theta = radians(30.0), T = 1.0, muk = 0.3;
   const Quat turn(Eigen::AngleAxisd(theta, Vec3::UnitY()));
   const Vec3 centre(0, 0, -0.5), normal = turn * Vec3::UnitZ(), down = turn * Vec3::UnitX();
-  const double half = shape == "box" ? 0.1 : 0.1;  // the box's half edge, the sphere's radius
+  const double half = 0.1;  // m, the box's half edge, the sphere's radius
   const Vec3 start = centre + (0.5 + half) * normal - 2.0 * down;
   json body = shape == "box" ? box("b", Vec3::Constant(2.0 * half), start, turn, 0.0, 0.5, muk)
-                             : json{{"name", "b"},
-                                    {"shape", {{"type", "sphere"}, {"radius", half}}},
-                                    {"mass", 1.0},
-                                    {"position", {start.x(), start.y(), start.z()}},
-                                    {"restitution", 0.0},
-                                    {"staticFriction", 0.6},
+                             : json{{"name", "b"},           {"shape", {{"type", "sphere"}, {"radius", half}}},
+                                    {"mass", 1.0},           {"position", {start.x(), start.y(), start.z()}},
+                                    {"restitution", 0.0},    {"staticFriction", 0.6},
                                     {"kineticFriction", 0.6}};
   const double mus = shape == "box" ? 0.5 : 0.6, mu = shape == "box" ? muk : 0.6;
   const double v0 = shape == "box" ? 0.5 : 0.0;  // m/s down the slope

@@ -22,6 +22,7 @@
 #include <utility>
 
 #include "broadphase.h"
+#include "contact_rules.h"
 
 namespace rigid {
 
@@ -103,11 +104,6 @@ Vec3 supportPoint(const Geo& g, const Vec3& d) {
     }
   }
   return g.p;
-}
-
-Vec3 anyPerpendicular(const Vec3& u) {
-  const Vec3 other = std::abs(u.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  return u.cross(other).normalized();
 }
 
 // Sutherland-Hodgman: keeps the part of the polygon `in` (n vertices) where
@@ -495,6 +491,16 @@ std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const Geo& g) {
 }
 
 }  // namespace
+
+Coefficients coefficientsOf(const WorldModel& model, const Contact& c) {
+  const BodyConstants& a = model.bodies[c.a];
+  const bool body = c.b >= 0;
+  const double xi = body ? model.bodies[c.b].restitution : model.surfaces[c.surface].restitution;
+  const double mus = body ? model.bodies[c.b].staticFriction : model.surfaces[c.surface].staticFriction;
+  const double muk = body ? model.bodies[c.b].kineticFriction : model.surfaces[c.surface].kineticFriction;
+  return {combineCoefficients(a.restitution, xi), combineCoefficients(a.staticFriction, mus),
+          combineCoefficients(a.kineticFriction, muk)};
+}
 
 struct CollisionDetector::Impl {
   // A candidate pair of the broadphase, ordered: a is a body; b a body of a higher

@@ -34,6 +34,13 @@ struct Contact {
   double patchRadius = 0.0;
 };
 
+// A touching pair's restitution xi and friction mu_s, mu_k: each the combination of its
+// two partners' (contact_rules.h).
+struct Coefficients {
+  double xi = 0.0, mus = 0.0, muk = 0.0;
+};
+Coefficients coefficientsOf(const WorldModel& model, const Contact& c);
+
 // Collision detection of one world instance: FCL geometry for every body that
 // collides and every surface (a box, turned about its centre), and one broadphase
 // (its kept sort order) per instance. No global state: many detectors run side by

@@ -74,25 +74,6 @@ void applyImpulse(Body& A, Body& B, const Jacobian& j, double lambda) {
   B.w += lambda * j.spinB;
 }
 
-struct Coefficients {
-  double xi = 0.0, mus = 0.0, muk = 0.0;
-};
-
-Coefficients coefficientsOf(const WorldModel& model, const Contact& c) {
-  const BodyConstants& a = model.bodies[c.a];
-  const bool body = c.b >= 0;
-  const double xi = body ? model.bodies[c.b].restitution : model.surfaces[c.surface].restitution;
-  const double mus = body ? model.bodies[c.b].staticFriction : model.surfaces[c.surface].staticFriction;
-  const double muk = body ? model.bodies[c.b].kineticFriction : model.surfaces[c.surface].kineticFriction;
-  return {combineCoefficients(a.restitution, xi), combineCoefficients(a.staticFriction, mus),
-          combineCoefficients(a.kineticFriction, muk)};
-}
-
-Vec3 anyPerpendicular(const Vec3& u) {
-  const Vec3 other = std::abs(u.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  return u.cross(other).normalized();
-}
-
 // One contact point's normal row.
 struct Point {
   Jacobian n;

@@ -51,10 +51,6 @@ struct Axis {
   double mass = 0.0;  // 1 / (1/Ma + 1/Mb + (r_a x d).Ia^-1 (r_a x d) + (r_b x d).Ib^-1 (r_b x d))
 };
 
-struct Coefficients {
-  double xi = 0.0, mus = 0.0, muk = 0.0;
-};
-
 // One contact point: its normal and two tangents, the impulses accumulated along them.
 struct Row {
   int a = 0, b = 0;  // solver bodies

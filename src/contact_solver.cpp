@@ -25,21 +25,6 @@ namespace {
 
 using namespace contact_rows;
 
-Coefficients coefficientsOf(const WorldModel& model, const Contact& c) {
-  const BodyConstants& a = model.bodies[c.a];
-  const bool body = c.b >= 0;
-  const double xi = body ? model.bodies[c.b].restitution : model.surfaces[c.surface].restitution;
-  const double mus = body ? model.bodies[c.b].staticFriction : model.surfaces[c.surface].staticFriction;
-  const double muk = body ? model.bodies[c.b].kineticFriction : model.surfaces[c.surface].kineticFriction;
-  return {combineCoefficients(a.restitution, xi), combineCoefficients(a.staticFriction, mus),
-          combineCoefficients(a.kineticFriction, muk)};
-}
-
-Vec3 anyPerpendicular(const Vec3& u) {
-  const Vec3 other = std::abs(u.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  return u.cross(other).normalized();
-}
-
 // ---- prepare ---------------------------------------------------------------------
 
 void prepareBody(const WorldModel& model, const std::vector<BodyState>& Y, int i, Solver& s) {

@@ -39,6 +39,9 @@ constexpr int kMaxPatch = 4;
 // Vertices of an incident polygon: an octagon for a cylinder's end, plus one per clip.
 constexpr int kMaxPoly = 16;
 constexpr int kDiscVertices = 8;  // the octagon drawn on a cylinder's end disc
+// m: how far libccd's EPA depth may exceed a face axis's overlap before its answer is
+// taken for a wrong one (its own tolerance is 1e-6).
+constexpr double kGjkSlack = 1e-6;
 constexpr double kPi = 3.14159265358979323846;
 
 // Geometry of one collision object in the frame FCL sees it: centre p and rotation
@@ -392,11 +395,13 @@ int appendFacePatch(const Geo& A, const Geo& B, const Vec3& n, double margin, co
   return appendPatchPoints(*face, pts, np, disc ? 2.0 / 3.0 * face->inc->radius : 0.0, margin, proto, out);
 }
 
-// The separating-axis normal (a -> b) over the face normals of the boxes of the
-// pair, for when the nearest points coincide (touching); the centre line otherwise.
-Vec3 touchingNormal(const Geo& A, const Geo& B) {
+// The largest separation of the pair over the face normals of its boxes, and that
+// axis n (a -> b); -infinity and the centre line when neither is a box. For when the
+// nearest points coincide (touching), and as a bound of the depth: no overlap is
+// deeper than the overlap along any axis.
+double faceSeparation(const Geo& A, const Geo& B, Vec3& n) {
   double best = -std::numeric_limits<double>::infinity();
-  Vec3 n = B.p - A.p;
+  n = B.p - A.p;
   n = n.norm() > 0.0 ? Vec3(n.normalized()) : Vec3(Vec3::UnitZ());
   for (int k = 0; k < 3; ++k) {
     for (double s : {-1.0, 1.0}) {
@@ -418,7 +423,7 @@ Vec3 touchingNormal(const Geo& A, const Geo& B) {
       }
     }
   }
-  return n;
+  return best;
 }
 
 // Largest separation of two boxes over the 15 axes of the separating-axis test (face
@@ -801,7 +806,18 @@ bool CollisionDetector::Impl::appendFclContacts(const Pair& pr, double margin, c
   // FCL's normal points from o1 to o2; o1 is A's geometry unless FCL swapped them.
   const fcl::Contactd& first = result.getContact(0);
   const double sign = first.o1 == oA->collisionGeometry().get() ? 1.0 : -1.0;
-  const Vec3 n = sign * first.normal;
+  Vec3 n = sign * first.normal;
+  // libccd's EPA answers a pair that only touches with an arbitrary normal and depth
+  // (a puck standing exactly on the floor: 1.65 m along the slab's side). A box's face
+  // normals bound the depth: when one of them separates the pair or meets it at zero,
+  // the pair touches at most and is answered along that face; when FCL's depth
+  // exceeds the overlap along one, that face's normal is the better answer.
+  if (A.type == ShapeType::Box || B.type == ShapeType::Box) {
+    Vec3 axis;
+    const double separation = faceSeparation(A, B, axis);
+    if (separation >= 0.0) return appendFacePatch(A, B, axis, margin, proto, out) > 0;
+    if (first.penetration_depth > -separation + kGjkSlack) n = axis;
+  }
   if (appendFacePatch(A, B, n, margin, proto, out) > 0) return true;
   for (size_t i = 0; i < result.numContacts(); ++i) {
     const fcl::Contactd& fc = result.getContact(i);
@@ -834,7 +850,8 @@ void CollisionDetector::Impl::appendWithinMargin(const Pair& pr, double margin, 
   // Touching within FCL's tolerance (or, rarely, overlapping by it): no direction from
   // the nearest points, which FCL does not even fill when it finds an overlap.
   const bool touching = !(dist > 0.0 && gap.norm() > 1e-12);
-  const Vec3 n = touching ? touchingNormal(A, B) : Vec3(gap.normalized());
+  Vec3 n = gap.normalized();
+  if (touching) faceSeparation(A, B, n);
   if (appendFacePatch(A, B, n, margin, proto, out) > 0) return;
   if (touching) {
     pA = supportPoint(A, n);

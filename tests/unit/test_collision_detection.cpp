@@ -317,6 +317,26 @@ TEST(CollisionDetection, CylinderStandingAndLyingOnTheFloor) {
   EXPECT_NEAR((out[0].normal - Vec3(0, 0, -1)).norm(), 0.0, kGjk);
 }
 
+// A cylinder standing exactly on the floor (the default scene's puck): its rim at
+// depth zero, pointing into the floor, with the margin or without it.
+TEST(CollisionDetection, CylinderTouchingTheFloorExactlyIsAContactOfDepthZero) {
+  rigid::WorldModel m;
+  const double r = 0.15, l = 0.1;
+  m.bodies = {cylinder(r, l)};
+  m.surfaces = {surface(Vec3(-6, 3, -0.2), Vec3(0, 6, 0))};
+  const Vec3 foot(-5.0, 4.5, 0.0);
+  for (double margin : {0.0, 0.004}) {
+    const std::vector<Contact> out = detect(m, {pose(foot + Vec3(0, 0, 0.5 * l))}, margin);
+    ASSERT_GE(out.size(), 3u) << "margin " << margin;
+    for (const Contact& c : out) {
+      EXPECT_NEAR((c.normal - Vec3(0, 0, -1)).norm(), 0.0, kExact) << "margin " << margin;
+      EXPECT_NEAR(c.depth, 0.0, kExact) << "margin " << margin;
+      EXPECT_NEAR(c.point.z(), 0.0, kExact);
+      EXPECT_NEAR((c.point - foot).head<2>().norm(), r, kExact);
+    }
+  }
+}
+
 TEST(CollisionDetection, CapsuleStandingAndLyingOnTheFloor) {
   rigid::WorldModel m;
   const double r = 0.1, l = 0.4, d = 0.002;

@@ -43,8 +43,11 @@ struct Body {
   Vec3 v0 = Vec3::Zero(), w0 = Vec3::Zero();  // at the step's start
   Vec3 dv = Vec3::Zero(), dw = Vec3::Zero();  // the applied forces' velocity change in a sub-step
   Vec3 moved = Vec3::Zero();                  // m, since the step's start
+  Vec3 turned = Vec3::Zero();                 // rad, the sub-steps' rotations h omega, summed
   Quat q0 = Quat::Identity(), q = Quat::Identity();
-  Mat3 turn = Mat3::Identity();  // the rotation since the step's start, q q0^-1
+  // some row gave it an impulse: else the integrator's free motion stands (its order,
+  // not the sub-steps' first order, for a body that only comes within the margin)
+  bool pushed = false;
 };
 
 // One direction of a row: an impulse lambda acts +lambda along it on b, -lambda on a.
@@ -68,6 +71,8 @@ double velocityAlong(const Body& A, const Body& B, const Jacobian& j) {
 }
 
 void applyImpulse(Body& A, Body& B, const Jacobian& j, double lambda) {
+  if (lambda == 0.0) return;
+  A.pushed = B.pushed = true;
   A.v -= lambda * A.invMass * j.linear;
   A.w -= lambda * j.spinA;
   B.v += lambda * B.invMass * j.linear;
@@ -356,10 +361,12 @@ void applyWarmStart(Solver& s) {
   }
 }
 
-// How far the point has closed since the step's start, along the normal (m): the two
-// bodies' material points, moved and turned.
+// How far the point has closed since the step's start, along the normal (m): the
+// sub-steps' motion of the two bodies at the point, to first order in their turns, as
+// the rows' velocities see it. (The turned material point would rise off a rolling
+// sphere by R (1 - cos theta), which the sphere's surface never does.)
 double closing(const Body& A, const Body& B, const Point& p, const Vec3& n) {
-  const Vec3 pa = A.moved + A.turn * p.rA0 - p.rA0, pb = B.moved + B.turn * p.rB0 - p.rB0;
+  const Vec3 pa = A.moved + A.turned.cross(p.rA0), pb = B.moved + B.turned.cross(p.rB0);
   return n.dot(pb - pa);
 }
 
@@ -449,9 +456,9 @@ void integratePositions(Solver& s, double hSub) {
   for (int i : s.moving) {
     Body& b = s.bodies[i];
     b.moved += hSub * b.v;
+    b.turned += hSub * b.w;
     const Quat spin(0.0, 0.5 * hSub * b.w.x(), 0.5 * hSub * b.w.y(), 0.5 * hSub * b.w.z());
     b.q = Quat(b.q.coeffs() + (spin * b.q).coeffs()).normalized();
-    b.turn = (b.q * b.q0.conjugate()).toRotationMatrix();
   }
 }
 
@@ -507,13 +514,14 @@ void pushSurfaces(const Solver& s, ContactImpulses& out) {
   }
 }
 
-// The moved bodies into next, and what contact gave each: the momenta change by the
-// velocity change (I at the step's start, the inertia the solve used), less the
-// applied forces' share.
-void commitBodies(const WorldModel& model, const WorldData& data, const Solver& s, std::vector<BodyState>& next,
-                  ContactImpulses& out) {
+// The bodies that some row pushed into next, and what contact gave each: the momenta
+// change by the velocity change (I at the step's start, the inertia the solve used),
+// less the applied forces' share. The others keep the integrator's motion.
+void commitBodies(const WorldModel& model, const WorldData& data, const Solver& s, int substeps,
+                  std::vector<BodyState>& next, ContactImpulses& out) {
   for (int i : s.moving) {
     const Body& b = s.bodies[i];
+    if (!b.pushed) continue;
     const BodyConstants& constants = model.bodies[i];
     const BodyState& y = data.Y[i];
     const Mat3 inertia = b.q0.toRotationMatrix() * constants.Ibody * b.q0.toRotationMatrix().transpose();
@@ -522,8 +530,8 @@ void commitBodies(const WorldModel& model, const WorldData& data, const Solver& 
     out_.q = b.q;
     out_.P = y.P + constants.mass * (b.v - b.v0);
     out_.L = y.L + inertia * (b.w - b.w0);
-    out.linear[i] = constants.mass * (b.v - b.v0 - kSubsteps * b.dv);
-    out.angular[i] = inertia * (b.w - b.w0 - kSubsteps * b.dw);
+    out.linear[i] = constants.mass * (b.v - b.v0 - substeps * b.dv);
+    out.angular[i] = inertia * (b.w - b.w0 - substeps * b.dw);
   }
 }
 
@@ -535,18 +543,14 @@ void countTouching(const std::vector<Contact>& contacts, std::vector<int>& count
   }
 }
 
-}  // namespace
-
-ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
-                                  double h, const std::vector<ContactMemory>& remembered,
-                                  std::vector<ContactMemory>& stored, std::vector<BodyState>& next,
-                                  std::vector<int>& count, ConstraintScratchPtr& scratch, ContactImpulses& impulses) {
-  ConstraintReport report;
+// The step's rows and the impacts at its start (both entry points begin so).
+Solver& prepareAndAnswerImpacts(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
+                                double h, ConstraintScratchPtr& scratch, ContactImpulses& impulses,
+                                ConstraintReport& report) {
   const size_t n = data.Y.size();
   impulses.linear.assign(n, Vec3::Zero());
   impulses.angular.assign(n, Vec3::Zero());
   impulses.pushes.clear();
-  countTouching(contacts, count);
   if (!scratch) scratch.reset(new ConstraintScratch);
   Solver& s = *scratch;
   s.bodies.assign(n + 1, Body{});
@@ -554,8 +558,29 @@ ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data
   s.moving.clear();
   prepareRows(model, data, contacts, h, s);
   report.points = static_cast<int>(s.points.size());
+  report.impactPasses = answerImpacts(s, restingNormalSpeed(model.gravity, h), h, impulses);
+  return s;
+}
+
+}  // namespace
+
+ConstraintReport answerImpactsNow(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
+                                  double h, std::vector<BodyState>& next, ConstraintScratchPtr& scratch,
+                                  ContactImpulses& impulses) {
+  ConstraintReport report;
+  const Solver& s = prepareAndAnswerImpacts(model, data, contacts, h, scratch, impulses, report);
+  commitBodies(model, data, s, 0, next, impulses);
+  return report;
+}
+
+ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
+                                  double h, const std::vector<ContactMemory>& remembered,
+                                  std::vector<ContactMemory>& stored, std::vector<BodyState>& next,
+                                  std::vector<int>& count, ConstraintScratchPtr& scratch, ContactImpulses& impulses) {
+  ConstraintReport report;
+  countTouching(contacts, count);
+  Solver& s = prepareAndAnswerImpacts(model, data, contacts, h, scratch, impulses, report);
   const double restingSpeed = restingNormalSpeed(model.gravity, h);
-  report.impactPasses = answerImpacts(s, restingSpeed, h, impulses);
   warmStart(remembered, s);
   const double hSub = h / kSubsteps;
   for (int k = 0; k < kSubsteps; ++k) {
@@ -569,7 +594,7 @@ ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data
   }
   store(s, std::max(1e-5, 0.01 * restingSpeed), stored);
   pushSurfaces(s, impulses);
-  commitBodies(model, data, s, next, impulses);
+  commitBodies(model, data, s, kSubsteps, next, impulses);
   return report;
 }
 

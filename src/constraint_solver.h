@@ -69,4 +69,12 @@ ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data
                                   std::vector<ContactMemory>& stored, std::vector<BodyState>& next,
                                   std::vector<int>& count, ConstraintScratchPtr& scratch, ContactImpulses& impulses);
 
+// The impacts stage alone, at the instant of data.Y: a step that ends at a located
+// bouncing impact and returns there (FMI 3's early return) answers it before it
+// returns, as the next step's start would. next[i] of each struck body takes its new
+// momenta (positions unchanged); `impulses` takes the impulses.
+ConstraintReport answerImpactsNow(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
+                                  double h, std::vector<BodyState>& next, ConstraintScratchPtr& scratch,
+                                  ContactImpulses& impulses);
+
 }  // namespace rigid

@@ -430,6 +430,23 @@ double locateImpactWithConstraints(StepContext& s, CollisionCache& c, double tau
   return lo;
 }
 
+// The impact at which a step returns early (FMI 3), answered before it returns: the
+// impacts stage at the located instant, whose impulses join the contact loads.
+StepResult answerLocatedImpact(StepContext& s, CollisionCache& c) {
+  detectContacts(s, s.data.Y, speculativeMargin(s, s.data.Y));
+  std::vector<BodyState>& next = s.data.scratch.next;
+  next = s.data.Y;
+  answerImpactsNow(s.model, s.data, c.contacts, s.h, next, c.constraints, c.impulses);
+  if (const StepResult r = commit(s.model, s.data, next, s.h); !r.ok) return r;
+  WorldData::ContactLoads& loads = s.data.contactLoads;
+  for (size_t i = 0; i < loads.impulse.size(); ++i) {
+    loads.impulse[i] += c.impulses.linear[i];
+    loads.angularImpulse[i] += c.impulses.angular[i];
+  }
+  for (const SurfacePush& p : c.impulses.pushes) loads.surfaceImpulse[p.surface] += p.impulse;
+  return {};
+}
+
 // One internal step of solver.contacts = "substep", as its stages: collide (the
 // contacts of the step's start, with the speculative margin), move (the integrator,
 // then the constraint solver), the instant of a bouncing impact when the step holds
@@ -461,7 +478,7 @@ StepResult stepOnceWithConstraints(StepContext& s, CollisionCache& c) {
     done += taken;
     if (taken == rest || impacts >= kMaxImpactsPerStep) return {};
     if (s.stopAtImpact && done > 0.0) {  // an impact inside the step, after its start
-      StepResult r;
+      StepResult r = answerLocatedImpact(s, c);
       r.impactAt = done;
       return r;
     }

@@ -161,6 +161,8 @@ fmi2Status Instance::exitInitializationMode() {
   data_ = rigid::initialData(model_);
   time_ = lastSuccessfulTime_ = startTime_;
   state_ = kStepComplete;
+  if (const std::string why = rigid::massRatioWarning(model_); !why.empty())
+    log(fmi2Warning, "logStatusWarning", std::string(called("fmi2ExitInitializationMode")) + ": " + why);
   log(fmi2OK, "logEvents",
       "initialised at t = " + num(time_) + " with method " + rigid::methodName(model_.method) + ", step " +
           num(model_.maxStep) + " s");

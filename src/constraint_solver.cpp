@@ -177,9 +177,22 @@ void prepareFriction(Manifold& m, const Solver& s) {
   m.frictionMass = K.inverse();
 }
 
+// How fast a contact point approaches at the step's start (m/s, > 0: closing).
+double approachSpeed(const WorldModel& model, const WorldData& data, const Contact& c) {
+  auto pointVelocity = [&](int i) {
+    BodyAux aux;
+    computeVelocities(model.bodies[i], data.Y[i], aux);
+    return Vec3(aux.V + aux.omega.cross(c.point - data.Y[i].X));
+  };
+  const Vec3 u = (c.b >= 0 ? pointVelocity(c.b) : Vec3::Zero()) - pointVelocity(c.a);
+  return -u.dot(c.normal);
+}
+
 // A manifold per touching pair (the detector's points come grouped by pair), a normal
-// row per point. A speculative point (apart by a gap) of a bouncing pair is left out:
-// its impact is located in time, and slowing it early would take energy from the bounce.
+// row per point. A speculative point (apart by a gap) of a bouncing pair that closes
+// faster than a resting body can is left out: its impact is located in time, and
+// slowing it early would take energy from the bounce. A slower one is held at its gap
+// as any other (it would not bounce).
 void prepareRows(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts, double h,
                  Solver& s) {
   const double hSub = h / kSubsteps;
@@ -205,7 +218,7 @@ void prepareRows(const WorldModel& model, const WorldData& data, const std::vect
     Vec3 centre = Vec3::Zero(), normal = Vec3::Zero();
     for (size_t k = i; k < end; ++k) {
       const bool touching = contacts[k].depth >= -kTouching;
-      if (!touching && m.k.xi > 0.0) continue;
+      if (!touching && m.k.xi > 0.0 && approachSpeed(model, data, contacts[k]) > restingSpeed) continue;
       Point p;
       p.touching = touching;
       p.separation = -contacts[k].depth;

@@ -374,7 +374,7 @@ Scene parseScene(const std::string& text) {
     m.maxStep = positive(s, "step", &step);
     m.tolerance = s.number("tolerance", defaults::kTolerance);
     if (m.tolerance < 0.0) fail("solver.tolerance", "must be >= 0, got " + num(m.tolerance));
-    const std::string contacts = s.string("contacts", "manifold");
+    const std::string contacts = s.string("contacts", "substep");
     if (contacts == "centroid")
       fail("solver.contacts", "\"centroid\" (the first contact model) was removed; must be \"manifold\"");
     if (contacts == "soft" || contacts == "newton")

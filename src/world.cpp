@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <utility>
 
@@ -418,7 +419,9 @@ int moveBodies(StepContext& s, CollisionCache& c, double tau, std::vector<BodySt
 }
 
 // The instant of the first impact within (0, tau], as locateImpact, each trial moving
-// the bodies with the constraint solver too.
+// the bodies with the constraint solver too. An impact that no positive instant
+// precedes is the step start's, which the solver's impacts stage answers: the step is
+// then taken whole (a step of length 0 has no motion to solve).
 double locateImpactWithConstraints(StepContext& s, CollisionCache& c, double tau, std::vector<BodyState>& next) {
   double lo = 0.0, hi = tau;
   while (hi - lo > 1e-15 * tau) {
@@ -426,6 +429,7 @@ double locateImpactWithConstraints(StepContext& s, CollisionCache& c, double tau
     moveBodies(s, c, mid, next);
     (impactIn(s, next) ? hi : lo) = mid;
   }
+  if (lo == 0.0) lo = tau;
   moveBodies(s, c, lo, next);
   return lo;
 }
@@ -603,6 +607,30 @@ StepResult step(const WorldModel& model, WorldData& data, double h, bool stopAtI
     }
   }
   return plan;
+}
+
+std::string massRatioWarning(const WorldModel& model) {
+  int light = -1, heavy = -1;
+  for (size_t i = 0; i < model.bodies.size(); ++i) {
+    if (!model.bodies[i].collides) continue;
+    const int k = static_cast<int>(i);
+    if (light < 0 || model.bodies[i].mass < model.bodies[light].mass) light = k;
+    if (heavy < 0 || model.bodies[i].mass > model.bodies[heavy].mass) heavy = k;
+  }
+  if (light < 0 || light == heavy) return {};
+  const double ratio = model.bodies[heavy].mass / model.bodies[light].mass;
+  if (!(ratio > kMaxMassRatio)) return {};
+  const double omega = 2.0 * 3.14159265358979323846 * 0.4 / model.maxStep;
+  const double sink = ratio * model.gravity.norm() / (omega * omega);
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "bodies %s (%g kg) and %s (%g kg) can collide with a mass ratio of %g, above the %g that contacts are "
+                "made for: under %s, %s would sink in by up to %.3g m at the step of %g s (the sinking scales with "
+                "the ratio and the step squared)",
+                model.bodies[heavy].name.c_str(), model.bodies[heavy].mass, model.bodies[light].name.c_str(),
+                model.bodies[light].mass, ratio, kMaxMassRatio, model.bodies[heavy].name.c_str(),
+                model.bodies[light].name.c_str(), sink, model.maxStep);
+  return text;
 }
 
 }  // namespace rigid

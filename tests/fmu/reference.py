@@ -16,3 +16,12 @@ def rotation_angle_between(q1, q2):
 
 def loglog_slope(h, err):
     return np.polyfit(np.log(h), np.log(err), 1)[0]
+
+
+def resting_depth(normal_acceleration, h, on_surface=True):
+    """Depth (m) at which a contact holds a body at rest under a steady normal
+    acceleration (m/s^2): the contact is a damped spring whose natural frequency is
+    0.8/h against a surface and 0.4/h between two bodies (h the solver step; the guide's
+    "How contacts are solved"), so the body sinks by a / (2 pi f)^2."""
+    f = (0.8 if on_surface else 0.4) / h
+    return normal_acceleration / (2 * np.pi * f) ** 2

@@ -125,3 +125,32 @@ def test_ball_bounces_off_the_side_of_a_surface(fmu_of):
     r = simulate_fmu(str(fmu_of(s)), stop_time=0.5, output_interval=0.01)
     assert np.max(r["ball.position[1]"]) <= 1.0 - R + 1e-9
     assert r["ball.velocity[1]"][-1] == pytest.approx(-0.5 * 5.0, abs=1e-9)
+
+
+def mass_ratio_warnings(fmu_of, start=None, **b2):
+    """The warnings of an initialisation of two spheres, 1 kg and 2000 kg (start values
+    `start`), the heavy one with the body fields b2."""
+    from harness import Slave
+    scene = two_spheres("Ratio" + "".join(sorted(b2)), 1.0, 2000.0, 0.0, 0.0, 0.0, **b2)
+    scene["gravity"] = [0.0, 0.0, -9.81]
+    s = Slave(fmu_of(scene))
+    try:
+        s.initialize(start or {})
+        return [m for status, _, m in s.log.messages if status == "Warning"]
+    finally:
+        s.close()
+
+
+def test_a_mass_ratio_above_a_thousand_is_warned_of_at_initialisation(fmu_of):
+    """Colliding bodies whose masses differ by more than 1e3 (the guide's limit) are
+    warned of, with the sinking (M/m) g / omega^2 that the ratio gives at the step
+    (omega = 2 pi 0.4 / h, h = 1 ms); a ratio within the limit, or a heavy body out of
+    collisions, is not. The masses are parameters: the start values count."""
+    sink = 2000 * 9.81 / (2 * np.pi * 0.4 / 1e-3) ** 2
+    (warning,) = mass_ratio_warnings(fmu_of)
+    assert "bodies b (2000 kg) and a (1 kg)" in warning and "mass ratio of 2000" in warning
+    assert f"sink in by up to {sink:.3g} m" in warning
+    assert mass_ratio_warnings(fmu_of, {"b.mass": 1000.0}) == []
+    assert mass_ratio_warnings(fmu_of, collision=False) == []
+    (warning,) = mass_ratio_warnings(fmu_of, {"a.mass": 0.5, "b.mass": 1000.0})
+    assert "mass ratio of 2000" in warning and f"{sink:.3g} m" in warning

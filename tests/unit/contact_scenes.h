@@ -69,7 +69,7 @@ inline json sceneOf(const json& bodies, const json& surfaces, double step = 1e-3
           {"solver",
            {{"method", method},
             {"step", step},
-            {"contacts", std::getenv("RIGID_CONTACTS") ? std::getenv("RIGID_CONTACTS") : "manifold"},
+            {"contacts", std::getenv("RIGID_CONTACTS") ? std::getenv("RIGID_CONTACTS") : "substep"},
             {"sleep", false}}},
           {"bodies", list(bodies)},
           {"surfaces", list(surfaces)}};

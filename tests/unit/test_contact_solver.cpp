@@ -187,9 +187,9 @@ TEST(ContactSolver, TallBoxPushedAboveTheTippingThresholdFallsOnItsSide) {
   EXPECT_GT(pushedTallBox(1.2 * threshold), radians(80.0));
 }
 
-// A torque about the vertical on a resting cube (edge a = 1 m): its four corner points
-// each bear m g / 4 at a / sqrt(2) from the axis, so static friction holds up to
-// mu_s m g a / sqrt(2) and the cube turns above it.
+// A torque about the vertical on a resting cube (edge a = 1 m, m = 1 kg): under
+// uniform pressure its face's friction holds up to mu_s m g r, r = 0.3826 a the mean
+// distance of the face's points from its centre, and the cube turns above it.
 double yawAfterTorque(double torque) {
   Sim sim(
       sceneOf({box("cube", Vec3::Ones(), Vec3(0, 0, 0.5), Quat::Identity(), 0.0, 0.6, 0.4)}, {floorSurface(0.6, 0.4)}));
@@ -201,32 +201,10 @@ double yawAfterTorque(double torque) {
 }
 
 TEST(ContactSolver, StaticFrictionHoldsATorqueBelowItsLimitAndNotAbove) {
-  const double limit = 0.6 * kG / std::sqrt(2.0);
+  const double meanRadius = (std::sqrt(2.0) + std::log(1.0 + std::sqrt(2.0))) / 6.0;  // of a unit square
+  const double limit = 0.6 * kG * meanRadius;
   EXPECT_LT(yawAfterTorque(0.9 * limit), radians(0.01));
   EXPECT_GT(yawAfterTorque(1.1 * limit), radians(5.0));
-}
-
-// A cube spinning about the vertical on the floor: kinetic friction at the four corner
-// points of its bottom face (a / sqrt 2 from the centre, m g / 4 each) brakes the spin
-// at the constant rate mu_k m g (a / sqrt 2) / I_zz, I_zz = m a^2 / 6, until it stops at
-// omega0 / rate; then static friction holds it, and it never slides.
-TEST(ContactSolver, SpinOnAFaceIsBrakedByKineticFrictionAtTheCornersAndStops) {
-  const double a = 0.2, muk = 0.3, omega0 = 5.0;
-  json cube = box("cube", Vec3::Constant(a), Vec3(0, 0, 0.5 * a), Quat::Identity(), 0.0, 0.5, muk);
-  cube["angularVelocity"] = {0.0, 0.0, omega0};
-  Sim sim(sceneOf(cube, floorSurface(0.5, muk)));
-  const double rate = muk * kG * (a / std::sqrt(2.0)) / (a * a / 6.0);  // rad/s^2
-  const double stopAt = omega0 / rate, h = sim.model.maxStep;
-  double t = 0.0, worst = 0.0;
-  sim.run(2.0 * stopAt, [&] {
-    t += h;
-    const double expected = std::max(0.0, omega0 - rate * t);
-    if (std::abs(t - stopAt) > 2.0 * h) worst = std::max(worst, std::abs(sim.data.aux[0].omega.z() - expected));
-    ASSERT_LT(sim.data.aux[0].V.norm(), 1e-4) << "t = " << t;
-  });
-  EXPECT_LT(worst, 1e-5 * omega0);
-  EXPECT_LT(std::abs(sim.data.aux[0].omega.z()), 1e-9);
-  EXPECT_LT(sim.data.Y[0].X.head<2>().norm(), 1e-6);
 }
 
 // A cube on a ramp with tan(theta) just below mu_s is held by static friction: it seats
@@ -384,23 +362,27 @@ TEST(ContactSolver, ABodyOutOfCollisionsPassesThroughBodiesAndRestsOnSurfaces) {
   EXPECT_LT(sim.fastest(), 1e-3);
 }
 
-// Two cubes, the upper `ratio` times heavier than the lower or the other way round:
-// both stand, whatever the ratio up to 1e6 (the heavy-on-light case is the one that
-// Gauss-Seidel alone cannot answer: its island's normals are solved at once).
+// Two cubes, the upper 1e3 times heavier than the lower or the other way round: both
+// stand still. A soft contact sinks by its load over its effective mass times omega^2
+// (omega = 2 pi 0.4 / h between bodies): under the heavy cube the pair overlaps by
+// (M / m) g / omega^2, 1.55 mm at h = 1 ms, the stated limit of mass ratios (the
+// guide's limits; a scene beyond 1e3 is warned of at initialisation).
 void expectTwoMassesStand(double upper, double lower) {
   json bodies = json::array({box("lower", Vec3::Constant(kEdge), Vec3(0, 0, 0.5 * kEdge)),
                              box("upper", Vec3::Constant(kEdge), Vec3(0, 0, 1.5 * kEdge))});
   bodies[0]["mass"] = lower;
   bodies[1]["mass"] = upper;
-  expectStands(bodies);
+  Sim sim(sceneOf(bodies, {floorSurface()}));
+  EXPECT_LT(driftAfterSettling(sim, 0.5, 1.5), 1e-5);
+  EXPECT_LT(sim.fastest(), 1e-4);
+  const double omega = 2.0 * std::acos(-1.0) * 0.4 / sim.model.maxStep;
+  const double load = std::max(upper / lower, 1.0);  // the pair's load over its effective mass, in g
+  EXPECT_NEAR(sim.deepestOverlap(), load * kG / (omega * omega), 0.02 * load * kG / (omega * omega));
 }
 
-TEST(ContactSolver, HeavyOnLightAndLightOnHeavyStandUpToAMassRatioOfAMillion) {
-  for (double ratio : {1e3, 1e6}) {
-    SCOPED_TRACE(ratio);
-    expectTwoMassesStand(ratio, 1.0);
-    expectTwoMassesStand(1.0, ratio);
-  }
+TEST(ContactSolver, HeavyOnLightAndLightOnHeavyStandAtAMassRatioOfAThousand) {
+  expectTwoMassesStand(1e3, 1.0);
+  expectTwoMassesStand(1.0, 1e3);
 }
 
 TEST(ContactSolver, PileOfAHundredCubesComesToRest) {
@@ -411,49 +393,35 @@ TEST(ContactSolver, PileOfAHundredCubesComesToRest) {
 }
 
 // A column of ten cubes dropped as the pile of 1000's are (tilted a little, landing on
-// edges) comes to rest as a rigid column would, without sleep: from 1 s on no cube moves
-// faster than 1 mm/s. Gauss-Seidel's passes alone (no shock pass) leave such a column
-// rocking about a point low in it for seconds: 4 mm/s at 1 s; the shock pass takes that
-// out.
+// edges) comes to rest without sleep: it rocks on its soft contacts, the rocking
+// damped within about 0.3 s, and from 1.5 s on no cube moves faster than 1 mm/s.
 TEST(ContactSolver, ColumnOfTenCubesDroppedComesToRest) {
   Sim sim(sceneOf(pile(10, 1), {floorSurface()}, 2e-3));
-  sim.run(1.0);
+  sim.run(1.5);
   double fastest = 0.0;
-  sim.run(1.0, [&] { fastest = std::max(fastest, sim.fastest()); });
+  sim.run(1.5, [&] { fastest = std::max(fastest, sim.fastest()); });
   EXPECT_LT(fastest, 1e-3);
+  EXPECT_LT(sim.fastest(), 1e-5);
   EXPECT_LT(sim.deepestOverlap(), 1e-3);
   std::printf("fastest cube over 1-2 s %.3g m/s\n", fastest);
 }
 
-// A column of ten cubes set down touching takes its load in its first solve and rests
-// still, awake: the answer is every cube at 0 m/s with the floor bearing the column's
-// weight, and one pass a solve reaches it. The coarse correction welds the ten resting
-// pairs and solves their wrenches at once (to 1e-8 m/s in the first solve; after that
-// it leaves an island whose pairs move slower than 1e-7 m/s to the passes). The passes
-// alone carry the load down a few cubes per pass: they ran to their cap of 60 in the
-// first solve (leaving the top cube at 4 mm/s) and kept the column jittering at ~1e-4
-// m/s, 10 passes a solve, ever after.
-TEST(ContactSolver, ColumnOfTenSetDownTakesItsLoadInOnePassAndRestsStill) {
+// A column of ten cubes set down touching (at depth 0) sinks into its contacts' resting
+// depths in its first 0.25 s, each seat by its load over its stiffness (the bottom cube
+// by 10 g / omega^2 on the floor, omega = 2 pi 0.8 / h; each pair above it softer), and
+// then rests still, awake: the top cube's sinking stays below 1 mm and, once the
+// settling has died away, no cube moves faster than 1e-6 m/s.
+TEST(ContactSolver, ColumnOfTenSetDownSinksIntoItsSeatsAndRestsStill) {
   Sim sim(sceneOf(column(10), {floorSurface()}, 2e-3));
-  sim.data.profiling = true;
-  sim.run(2e-3);
-  EXPECT_EQ(sim.data.profile.iterations, 1);
-  EXPECT_LT(sim.fastest(), 1e-8);
-  double fastest = 0.0;
-  sim.run(2.0, [&] { fastest = std::max(fastest, sim.fastest()); });
-  EXPECT_EQ(sim.data.profile.iterations, sim.data.profile.solves);
-  EXPECT_LT(fastest, 1e-6);
-  for (int i = 0; i < 10; ++i) EXPECT_NEAR(sim.data.Y[i].X.z(), kEdge * (0.5 + i), 1e-4) << i;  // the slop
-}
-
-// Contact alone never adds mechanical energy: through a falling, tumbling pile no step
-// ends with more than the last one's plus 1e-5 J (the split impulse moves bodies out of
-// overlaps against gravity: 2e-6 J measured at most), and the run ends below its start.
-TEST(ContactSolver, MechanicalEnergyNeverRisesThroughContact) {
-  Sim sim(sceneOf(pile(27, 3), {floorSurface()}, 2e-3));
-  const EnergyRun e = runWatchingEnergy(sim, 1.5);
-  EXPECT_LT(e.worstRise, 1e-5);
-  EXPECT_LT(e.end, e.start);
+  sim.run(0.25);
+  const double omega = 2.0 * std::acos(-1.0) * 0.8 / sim.model.maxStep;
+  EXPECT_NEAR(0.5 * kEdge - sim.data.Y[0].X.z(), 10.0 * kG / (omega * omega), 1e-7);
+  const double top = 9.5 * kEdge - sim.data.Y[9].X.z();
+  EXPECT_GT(top, 0.0);
+  EXPECT_LT(top, 1e-3);
+  sim.run(2.25);
+  EXPECT_LT(sim.fastest(), 1e-6);
+  EXPECT_NEAR(9.5 * kEdge - sim.data.Y[9].X.z(), top, 1e-6);
 }
 
 // ---- what the first model did and this one keeps ----------------------------------------

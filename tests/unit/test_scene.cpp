@@ -129,8 +129,8 @@ TEST(Scene, UnknownSolverField) {
                      "sleepSpeed, sleepTime)");
 }
 
-TEST(Scene, ContactSolverIsManifold) {
-  EXPECT_EQ(rigid::parseScene(sceneWith("", "")).model.contacts, rigid::ContactModel::Manifold);
+TEST(Scene, ContactSolverIsSubstep) {
+  EXPECT_EQ(rigid::parseScene(sceneWith("", "")).model.contacts, rigid::ContactModel::Substep);
   EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "manifold"}, )")).model.contacts,
             rigid::ContactModel::Manifold);
   EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "substep"}, )")).model.contacts,

@@ -8,7 +8,6 @@
 #include "collision_detection.h"
 #include "constraint_solver.h"
 #include "contact_memory.h"
-#include "contact_solver.h"
 
 namespace rigid {
 
@@ -19,10 +18,9 @@ struct CollisionCache {
   std::vector<double> halfThickness;   // m, per body (0 for bodies that meet nothing)
   std::vector<double> boundingRadius;  // m, per body (0 for bodies that meet nothing)
   std::vector<double> travel;          // m, scratch: each body's reach in a step
-  ContactScratchPtr solver;            // the contact solver's buffers
-  // solver.contacts = "substep" (constraint_solver.h): the contacts of the step's start
-  // (the cache's `contacts` may hold a probe's while an impact is located), its
-  // buffers, the memory it stores, and the impulses it gave
+  // the constraint solver (constraint_solver.h): the contacts of the step's start (the
+  // cache's `contacts` may hold a probe's while an impact is located), its buffers,
+  // the memory it stores, and the impulses it gave
   std::vector<Contact> stepContacts;
   ConstraintScratchPtr constraints;
   std::vector<ContactMemory> storedMemory;
@@ -32,10 +30,10 @@ struct CollisionCache {
   std::vector<int> island;
   std::vector<char> grounded, ready;
   std::vector<ContactMemory> sleepingMemory, mergedMemory;
-  // the last solve's impulses: what the bodies gave the surfaces, each body's change of
-  // P and L (contact impulse and its moment), and P and L before it (buffers)
+  // the last step's impulses: what the bodies gave the surfaces, each body's change of
+  // P and L (contact impulse and its moment)
   std::vector<SurfacePush> pushes;
-  std::vector<Vec3> stepImpulse, stepAngularImpulse, Pbefore, Lbefore;
+  std::vector<Vec3> stepImpulse, stepAngularImpulse;
 };
 
 }  // namespace rigid

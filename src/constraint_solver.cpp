@@ -177,15 +177,15 @@ void prepareFriction(Manifold& m, const Solver& s) {
   m.frictionMass = K.inverse();
 }
 
-// How fast a contact point approaches at the step's start (m/s, > 0: closing).
-double approachSpeed(const WorldModel& model, const WorldData& data, const Contact& c) {
+// How fast a contact point of Y approaches (m/s, > 0: closing).
+double approachSpeed(const WorldModel& model, const std::vector<BodyState>& Y, const Contact& c) {
   auto pointVelocity = [&](int i) {
+    if (i < 0) return Vec3(Vec3::Zero());
     BodyAux aux;
-    computeVelocities(model.bodies[i], data.Y[i], aux);
-    return Vec3(aux.V + aux.omega.cross(c.point - data.Y[i].X));
+    computeVelocities(model.bodies[i], Y[i], aux);
+    return Vec3(aux.V + aux.omega.cross(c.point - Y[i].X));
   };
-  const Vec3 u = (c.b >= 0 ? pointVelocity(c.b) : Vec3::Zero()) - pointVelocity(c.a);
-  return -u.dot(c.normal);
+  return -c.normal.dot(pointVelocity(c.b) - pointVelocity(c.a));
 }
 
 // A manifold per touching pair (the detector's points come grouped by pair), a normal
@@ -218,7 +218,7 @@ void prepareRows(const WorldModel& model, const WorldData& data, const std::vect
     Vec3 centre = Vec3::Zero(), normal = Vec3::Zero();
     for (size_t k = i; k < end; ++k) {
       const bool touching = contacts[k].depth >= -kTouching;
-      if (!touching && m.k.xi > 0.0 && approachSpeed(model, data, contacts[k]) > restingSpeed) continue;
+      if (!touching && m.k.xi > 0.0 && approachSpeed(model, data.Y, contacts[k]) > restingSpeed) continue;
       Point p;
       p.touching = touching;
       p.separation = -contacts[k].depth;
@@ -609,6 +609,13 @@ ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data
   pushSurfaces(s, impulses);
   commitBodies(model, data, s, kSubsteps, next, impulses);
   return report;
+}
+
+bool anyBouncingImpact(const WorldModel& model, const std::vector<Contact>& contacts, const std::vector<BodyState>& Y,
+                       double restingSpeed) {
+  return std::any_of(contacts.begin(), contacts.end(), [&](const Contact& c) {
+    return c.depth > 0.0 && coefficientsOf(model, c).xi > 0.0 && approachSpeed(model, Y, c) > restingSpeed;
+  });
 }
 
 }  // namespace rigid

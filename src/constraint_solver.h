@@ -1,6 +1,6 @@
-// The constraint solver (solver.contacts = "substep" while it is being brought in; it
-// will be the only one): Box2D v3's soft step in three dimensions. It moves the bodies
-// of the contact islands over a step, in this order:
+// The constraint solver: Box2D v3's soft step in three dimensions, one solver for every
+// touching pair, body-body and body-surface (a surface is a static box of infinite
+// mass). It moves the bodies of the contact islands over a step, in this order:
 //   impacts      the seed's impulse j with restitution xi at every touching pair that
 //                approaches faster than a resting body can (the step starts at the
 //                located instant of the impact), pass after pass (Newton's cradle);
@@ -20,7 +20,7 @@
 
 #include "collision_detection.h"
 #include "contact_memory.h"
-#include "contact_solver.h"
+#include "world.h"
 
 namespace rigid {
 
@@ -50,6 +50,14 @@ struct ConstraintReport {
   int impactPasses = 0;  // passes of the impacts (0: none)
 };
 
+// What a solve gave one surface through one body's points (impulses, impacts
+// included): the impulse on the surface, N s, world frame.
+struct SurfacePush {
+  int body = -1;
+  int surface = -1;
+  Vec3 impulse = Vec3::Zero();
+};
+
 // What the solver gave the bodies over a step: each body's contact impulse and its
 // moment about the centre of mass (N s, N m s, world frame), and the surfaces' pushes.
 struct ContactImpulses {
@@ -76,5 +84,10 @@ ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data
 ConstraintReport answerImpactsNow(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
                                   double h, std::vector<BodyState>& next, ConstraintScratchPtr& scratch,
                                   ContactImpulses& impulses);
+
+// Whether some contact of Y is a bouncing impact: overlapping, xi > 0, approaching
+// faster than restingSpeed (m/s). The step then locates the instant of impact.
+bool anyBouncingImpact(const WorldModel& model, const std::vector<Contact>& contacts, const std::vector<BodyState>& Y,
+                       double restingSpeed);
 
 }  // namespace rigid

@@ -19,7 +19,8 @@ inline Eigen::Vector4d orientationRate(const Vec3& omega, const Quat& q) {
 
 // Whether every force on a body stays constant over a step: gravity and the inputs
 // (held over each step) only, with no media (buoyancy and drag follow the state).
-// Contacts act after the step (contact_solver.h), not as forces.
+// Contacts act in the constraint solver after the integrator (constraint_solver.h), not
+// as forces.
 bool forcesHeldOverStep(const WorldModel& model);
 // The same for one body: also no load at a point, whose moment (and, in the body frame,
 // force) turns with the body.

@@ -42,13 +42,6 @@ std::optional<Method> methodFromName(const std::string& name);
 std::optional<Method> methodFromValue(int value);
 const char* methodName(Method method);
 
-// How far a method's step moves a body under a force held over the step, as a share of
-// h times the velocity change the force makes: 1/2 for every method that is exact on a
-// constant force, 0 for explicit Euler (positions from the old velocity), 1 for
-// semi-implicit Euler (positions from the new one). The contact solver moves bodies by
-// this share of its impulses, as if they were such a force (contact_solver.h).
-double constantForceDisplacement(Method method);
-
 // Y(t + h) of every body into `next` (q not yet normalised). Reads data.Y and
 // data.input; uses data.scratch and data.aux as work space. Returns the number of
 // steps it took: 1, or the accepted steps of the adaptive method, which also sets

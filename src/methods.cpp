@@ -68,13 +68,4 @@ const char* methodName(Method method) {
   return "?";
 }
 
-double constantForceDisplacement(Method method) {
-  switch (method) {
-    case Method::Euler: return 0.0;
-    case Method::SymplecticEuler: return 1.0;
-    default:  // RK4, LieRK4, Dopri5 and the splitting (kick-drift-kick) are exact; ROS2 too
-      return 0.5;
-  }
-}
-
 }  // namespace rigid

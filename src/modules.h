@@ -14,7 +14,7 @@ struct WorldModel;
 enum ModuleBits : unsigned {
   kModuleSurfaces = 1u << 0,    // surfaces, as static boxes of the contact solve (with collisions)
   kModuleMedia = 1u << 1,       // medium: buoyancy, drag
-  kModuleCollisions = 1u << 2,  // collision_detection (FCL), contact_solver
+  kModuleCollisions = 1u << 2,  // collision_detection (FCL), constraint_solver
 };
 
 // The modules a world needs. Surfaces and collisions come together: a surface is a

@@ -360,8 +360,13 @@ Scene parseScene(const std::string& text) {
   m.name = identifier(o, "name", "scene");
   m.gravity = o.vec3("gravity", Vec3(0.0, 0.0, -9.81));
   if (o.has("solver")) {
+    // The choice of contact solver went with issue 38: one solver answers every contact.
+    if (o.at("solver").is_object() && o.at("solver").contains("contacts"))
+      fail("solver.contacts",
+           "was removed: every contact has one solver now, the constraint solver (docs/decisions/"
+           "0001-constraint-solver.md); delete the field");
     Object s(o.at("solver"), "solver",
-             {"method", "step", "tolerance", "energyGainLimit", "contacts", "sleep", "sleepSpeed", "sleepTime"});
+             {"method", "step", "tolerance", "energyGainLimit", "sleep", "sleepSpeed", "sleepTime"});
     const std::string method = s.string("method", "rk4");
     const auto chosen = methodFromName(method);
     if (!chosen) {
@@ -374,15 +379,6 @@ Scene parseScene(const std::string& text) {
     m.maxStep = positive(s, "step", &step);
     m.tolerance = s.number("tolerance", defaults::kTolerance);
     if (m.tolerance < 0.0) fail("solver.tolerance", "must be >= 0, got " + num(m.tolerance));
-    const std::string contacts = s.string("contacts", "substep");
-    if (contacts == "centroid")
-      fail("solver.contacts", "\"centroid\" (the first contact model) was removed; must be \"manifold\"");
-    if (contacts == "soft" || contacts == "newton")
-      fail("solver.contacts",
-           "\"" + contacts + "\" (an experimental contact solver) was removed; must be \"manifold\" or \"substep\"");
-    if (contacts != "manifold" && contacts != "substep")
-      fail("solver.contacts", "must be \"manifold\" or \"substep\", got \"" + contacts + "\"");
-    m.contacts = contacts == "substep" ? ContactModel::Substep : ContactModel::Manifold;
     m.energyGainLimit = s.number("energyGainLimit", defaults::kEnergyGainLimit);
     if (m.energyGainLimit < 0.0)
       fail("solver.energyGainLimit", "must be >= 0 (0: unchecked), got " + num(m.energyGainLimit));

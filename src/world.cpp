@@ -12,8 +12,8 @@
 #include "modules.h"
 
 #include "collision_cache.h"
+#include "constraint_solver.h"
 #include "contact_rules.h"
-#include "contact_solver.h"
 #include "module_switches.h"
 #include "sleep.h"
 
@@ -220,56 +220,6 @@ bool impactIn(StepContext& s, const std::vector<BodyState>& Y) {
   return bouncingImpact(s, Y);
 }
 
-// The instant of the first impact within (0, tau], by bisection on re-integrations
-// from the start of the step, to 1e-15 of the step: the bounce then happens where
-// and when it should, whatever the step size. Leaves next = Y at that instant (just
-// before the penetration) and returns it.
-double locateImpact(StepContext& s, double tau, std::vector<BodyState>& next) {
-  double lo = 0.0, hi = tau;
-  while (hi - lo > 1e-15 * tau) {
-    const double mid = 0.5 * (lo + hi);
-    advance(s.model, s.data, mid, next);
-    (impactIn(s, next) ? hi : lo) = mid;
-  }
-  advance(s.model, s.data, lo, next);
-  return lo;
-}
-
-// Contact response: what happens at an instant rather than over the step. Every
-// contact in the collision cache (detected for `after`), body-body and body-surface,
-// in one solve: manifolds, warm start, impulses, positions, store (contact_solver.h).
-void respondToContacts(StepContext& s, std::vector<BodyState>& after) {
-  const SleepState& sleep = s.data.sleep;
-  for (size_t i = 0; i < s.data.contacts.size(); ++i)
-    if (!sleep.asleep[i]) s.data.contacts[i] = 0;  // a sleeping body keeps its count
-  if constexpr (modules::kCollisions) {
-    CollisionCache* c = s.data.collision.get();
-    if (!c) return;
-    Stopwatch response(slotOf(s.data, &StepProfile::response));
-    const ContactStep step{s.h, restingNormalSpeed(s.model.gravity, s.h), constantForceDisplacement(s.model.method)};
-    setAsideSleeping(sleep, s.data.contactMemory, *c);
-    c->Pbefore.resize(after.size());
-    c->Lbefore.resize(after.size());
-    for (size_t i = 0; i < after.size(); ++i) c->Pbefore[i] = after[i].P, c->Lbefore[i] = after[i].L;
-    const ContactSolveReport report =
-        solveContacts(s.model, c->contacts, step, s.data.contactMemory, after, s.data.contacts, c->solver, c->pushes);
-    mergeBackSleeping(s.data.contactMemory, *c);
-    // the solve changed P and L by impulses only (its position correction moves X and q)
-    for (size_t i = 0; i < after.size(); ++i) {
-      c->stepImpulse[i] = after[i].P - c->Pbefore[i];
-      c->stepAngularImpulse[i] = after[i].L - c->Lbefore[i];
-    }
-    if (s.data.profiling) {
-      ++s.data.profile.solves;
-      s.data.profile.iterations += report.iterations;
-      s.data.profile.rowSolves += report.rowSolves;
-      s.data.profile.points += report.points;
-    }
-  } else {
-    (void)after;
-  }
-}
-
 // After a step of `taken` is committed (a refused one adds nothing): its contact
 // impulses and the sleeping bodies' loads into WorldData::contactLoads, then the
 // islands that have come to rest fall asleep.
@@ -398,8 +348,8 @@ double speculativeMargin(const StepContext& s, const std::vector<BodyState>& Y) 
   return std::clamp(2.0 * fastest * s.h, kSpeculativeMargin, kMaxSpeculativeMargin);
 }
 
-// solver.contacts = "substep": the integrator's free motion of every awake body over
-// tau, then the constraint solver's motion of the bodies that the step's contacts
+// The integrator's free motion of every awake body over tau, then the constraint
+// solver's motion of the bodies that the step's contacts
 // join (constraint_solver.h), from the state and contact memory of the step's start.
 // Returns the integrator's steps (0: the adaptive method failed its tolerance).
 int moveBodies(StepContext& s, CollisionCache& c, double tau, std::vector<BodyState>& next) {
@@ -418,11 +368,12 @@ int moveBodies(StepContext& s, CollisionCache& c, double tau, std::vector<BodySt
   return steps;
 }
 
-// The instant of the first impact within (0, tau], as locateImpact, each trial moving
-// the bodies with the constraint solver too. An impact that no positive instant
+// The instant of the first impact within (0, tau], by bisection on trial steps from
+// the step's start (the integrator, then the constraint solver) to 1e-15 of the step:
+// the bounce then happens where and when it should, whatever the step size. An impact that no positive instant
 // precedes is the step start's, which the solver's impacts stage answers: the step is
 // then taken whole (a step of length 0 has no motion to solve).
-double locateImpactWithConstraints(StepContext& s, CollisionCache& c, double tau, std::vector<BodyState>& next) {
+double locateImpact(StepContext& s, CollisionCache& c, double tau, std::vector<BodyState>& next) {
   double lo = 0.0, hi = tau;
   while (hi - lo > 1e-15 * tau) {
     const double mid = 0.5 * (lo + hi);
@@ -451,11 +402,11 @@ StepResult answerLocatedImpact(StepContext& s, CollisionCache& c) {
   return {};
 }
 
-// One internal step of solver.contacts = "substep", as its stages: collide (the
-// contacts of the step's start, with the speculative margin), move (the integrator,
-// then the constraint solver), the instant of a bouncing impact when the step holds
-// one (the step is then split there), store, commit, loads and sleep.
-StepResult stepOnceWithConstraints(StepContext& s, CollisionCache& c) {
+// One internal step with contacts, as its stages: collide (the contacts of the step's
+// start, with the speculative margin), move (the integrator, then the constraint
+// solver), the instant of a bouncing impact when the step holds one (the step is then
+// split there), store, commit, loads and sleep.
+StepResult stepWithContacts(StepContext& s, CollisionCache& c) {
   std::vector<BodyState>& next = s.data.scratch.next;
   constexpr int kMaxImpactsPerStep = 16;
   double done = 0.0;
@@ -467,7 +418,7 @@ StepResult stepOnceWithConstraints(StepContext& s, CollisionCache& c) {
     const int steps = moveBodies(s, c, rest, next);
     double taken = rest;
     if (steps > 0 && firstNonFinite(next) < 0 && impacts < kMaxImpactsPerStep && s.bouncy && impactIn(s, next))
-      taken = locateImpactWithConstraints(s, c, rest, next);
+      taken = locateImpact(s, c, rest, next);
     std::swap(c.contacts, c.stepContacts);                           // the step's contacts, for sleep
     if (steps > 0) std::swap(s.data.contactMemory, c.storedMemory);  // else no solve stored any
     mergeBackSleeping(s.data.contactMemory, c);
@@ -489,45 +440,16 @@ StepResult stepOnceWithConstraints(StepContext& s, CollisionCache& c) {
   }
 }
 
-// One internal step, as its stages: forces and integration (advance), contact
-// detection, the instant of a bouncing impact when the step holds one (the step is
-// then split there), the contact solve, and the new state's checks (commit).
+// One internal step: the contact step when something can touch, else the integrator
+// alone.
 StepResult stepOnce(StepContext& s) {
+  if constexpr (modules::kCollisions)
+    if (s.data.collision) return stepWithContacts(s, *s.data.collision);
   std::vector<BodyState>& next = s.data.scratch.next;
-  if constexpr (!modules::kCollisions) {  // nothing to touch: the integrator alone
-    const int steps = advance(s.model, s.data, s.h, next);
-    if (steps == 0) return failed(-1);
-    s.data.steps += steps;
-    return commit(s.model, s.data, next, s.h);
-  }
-  if (s.model.contacts == ContactModel::Substep && s.data.collision)
-    return stepOnceWithConstraints(s, *s.data.collision);
-  constexpr int kMaxImpactsPerStep = 16;
-  double done = 0.0;
-  for (int impacts = 0;; ++impacts) {
-    const double rest = s.h - done;
-    const int steps = advance(s.model, s.data, rest, next);
-    if (steps == 0) return failed(-1);
-    // Out of range: refused before contact detection ever sees it.
-    if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);
-    double taken = rest;
-    detectContacts(s, next, speculativeMargin(s, next));
-    if (impacts < kMaxImpactsPerStep && s.bouncy && bouncingImpact(s, next)) {
-      if (!impactIn(s, s.data.Y)) taken = locateImpact(s, rest, next);
-      detectContacts(s, next, speculativeMargin(s, next));  // the cache held other states' contacts
-    }
-    respondToContacts(s, next);
-    if (const StepResult r = commit(s.model, s.data, next, s.h); !r.ok) return r;
-    if constexpr (modules::kCollisions) addLoadsAndSleep(s, taken);
-    s.data.steps += steps;
-    done += taken;
-    if (taken == rest || impacts >= kMaxImpactsPerStep) return {};
-    if (s.stopAtImpact && done > 0.0) {  // an impact inside the step, after its start
-      StepResult r;
-      r.impactAt = done;
-      return r;
-    }
-  }
+  const int steps = advance(s.model, s.data, s.h, next);
+  if (steps == 0) return failed(-1);
+  s.data.steps += steps;
+  return commit(s.model, s.data, next, s.h);
 }
 
 // Whether some body of xi > 0 meets something (another colliding body or a surface).

@@ -17,11 +17,6 @@ namespace rigid {
 
 struct CollisionCache;  // collision_cache.h: the FCL detector and its contacts
 
-// The contact solver (solver.contacts; contact_solver.h): Gauss-Seidel passes to a
-// tolerance (the default), or the constraint solver's sub-steps (constraint_solver.h;
-// "substep", to become the only one).
-enum class ContactModel { Manifold, Substep };
-
 // Constants of one scene. Parameters of the FMU (mass, gravity, method, ...) change
 // them only between runs or, for tunable ones, between communication steps.
 struct WorldModel {
@@ -34,7 +29,6 @@ struct WorldModel {
   // before a step is refused (0: unchecked); explicit Euler gains ~(h |omega|)^2 a step.
   double energyGainLimit = 1e-3;
   SleepRules sleep;  // when islands at rest sleep (sleep.h)
-  ContactModel contacts = ContactModel::Substep;
   std::vector<BodyConstants> bodies;
   std::vector<Surface> surfaces;
   std::vector<Medium> media;
@@ -57,11 +51,9 @@ struct StepProfile {
   double integration = 0.0;  // the integrator's stages (impact location's re-integrations too)
   double broadphase = 0.0;   // poses, bounding boxes, the sweep in grid rows and its candidate pairs
   double narrowphase = 0.0;  // contact points of the candidate pairs
-  double response = 0.0;     // the contact solve: impulses, friction, position correction
+  double response = 0.0;     // the constraint solver: impacts, sub-steps, store
   long steps = 0;            // internal steps profiled
-  long solves = 0;           // contact solves
-  long iterations = 0;       // their velocity iterations, summed
-  long rowSolves = 0;        // the points those iterations solved, summed
+  long solves = 0;           // constraint solves
   long points = 0;           // contact points answered, summed over the solves
 };
 

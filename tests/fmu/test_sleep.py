@@ -34,7 +34,7 @@ def test_a_box_at_rest_sleeps_and_a_tunable_gravity_wakes_it(fmu):
         w = s.get("box.angularVelocity[1]", "box.angularVelocity[2]", "box.angularVelocity[3]")
         assert list(v) == [0.0, 0.0, 0.0] and list(w) == [0.0, 0.0, 0.0]
         z0 = s.get("box.position[3]")
-        assert z0 == pytest.approx(EDGE / 2, abs=1e-4)  # on its seat (the solver's slop)
+        assert z0 == pytest.approx(EDGE / 2, abs=1e-4)  # on its seat (the soft contact's sinking)
         assert run(s, 1.0, 2.0) == run(s, 2.0, 2.0) and s.get("box.position[3]") == z0
         # gravity turned upwards: the box leaves the floor at a = 2 m/s^2 (rk4 is exact
         # on a constant force), from rest at z0

@@ -60,25 +60,13 @@ inline json box(const std::string& name, const Vec3& size, const Vec3& position,
 // (A braced single object is that object to nlohmann::json, not a list: one is wrapped.)
 // Sleep is off: the solver's tests judge its own rest, and a sleeping island would hide
 // a pile that the solver leaves creeping slower than the sleep speed (test_sleep.cpp
-// sets it on). The contact solver is the default unless RIGID_CONTACTS names another
-// (solver.contacts; only "manifold" for now): `RIGID_CONTACTS=<name>
-// build/rigid_unit_tests` holds that solver to every contact test.
+// sets it on).
 inline json sceneOf(const json& bodies, const json& surfaces, double step = 1e-3, const char* method = "rk4") {
   auto list = [](const json& j) { return j.is_array() ? j : json::array({j}); };
   return {{"name", "T"},
-          {"solver",
-           {{"method", method},
-            {"step", step},
-            {"contacts", std::getenv("RIGID_CONTACTS") ? std::getenv("RIGID_CONTACTS") : "substep"},
-            {"sleep", false}}},
+          {"solver", {{"method", method}, {"step", step}, {"sleep", false}}},
           {"bodies", list(bodies)},
           {"surfaces", list(surfaces)}};
-}
-
-// The scene answered by another contact solver (solver.contacts).
-inline json withContacts(json scene, const char* contacts) {
-  scene["solver"]["contacts"] = contacts;
-  return scene;
 }
 
 // One world run step by step, as the FMU runs it.

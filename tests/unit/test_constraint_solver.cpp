@@ -1,4 +1,4 @@
-// The constraint solver (solver.contacts = "substep", src/constraint_solver.h) against
+// The constraint solver (src/constraint_solver.h) against
 // closed forms: friction against spin from the patch under uniform pressure, a puck
 // whose slip and spin stop together, momentum kept through contact to rounding, and
 // stacks that stand with sleep off.
@@ -15,8 +15,6 @@
 namespace {
 
 using namespace test_scenes;
-
-json constraints(json scene) { return withContacts(std::move(scene), "substep"); }
 
 // (sqrt 2 + ln(1 + sqrt 2)) / 6: the mean distance of a square's area from its centre,
 // per unit side.
@@ -39,7 +37,7 @@ TEST(ConstraintSolver, CubeSpunOnItsFaceStopsAtTheUniformPressureTime) {
   const double a = 0.1, mu = 0.5, omega0 = 5.0;
   json cube = box("cube", Vec3::Constant(a), Vec3(0, 0, 0.5 * a), Quat::Identity(), 0.0, mu, mu);
   cube["angularVelocity"] = {0, 0, omega0};
-  Sim sim(constraints(sceneOf(cube, floorSurface(mu, mu))));
+  Sim sim(sceneOf(cube, floorSurface(mu, mu)));
   const double expected = omega0 * (a * a / 6.0) / (mu * kG * kSquareRadius * a);
   const double stopped = timeToStopSpinning(sim, omega0, 2.0 * expected);
   std::printf("stopped at %.4f s, closed form %.4f s\n", stopped, expected);
@@ -59,7 +57,7 @@ TEST(ConstraintSolver, PuckSpunOnItsEndStopsAtTheUniformPressureTime) {
                {"restitution", 0.0},
                {"staticFriction", mu},
                {"kineticFriction", mu}};
-  Sim sim(constraints(sceneOf(puck, floorSurface(mu, mu))));
+  Sim sim(sceneOf(puck, floorSurface(mu, mu)));
   const double expected = 3.0 * omega0 * R / (4.0 * mu * kG);
   const double stopped = timeToStopSpinning(sim, omega0, 2.0 * expected);
   std::printf("stopped at %.4f s, closed form %.4f s\n", stopped, expected);
@@ -80,7 +78,7 @@ TEST(ConstraintSolver, PuckSlidingAndSpinningStopsBothMotionsAtOnce) {
                  {"restitution", 0.0},
                  {"staticFriction", mu},
                  {"kineticFriction", mu}};
-    Sim sim(constraints(sceneOf(puck, floorSurface(mu, mu))));
+    Sim sim(sceneOf(puck, floorSurface(mu, mu)));
     double t = 0.0, slipStop = -1.0, spinStop = -1.0;
     while (t < 3.0 && (slipStop < 0.0 || spinStop < 0.0)) {
       sim.run(sim.model.maxStep);
@@ -111,7 +109,7 @@ TEST(ConstraintSolver, SphereSlippingOnAPlankKeepsThePairsHorizontalMomentum) {
                {"restitution", 0.0},
                {"staticFriction", 0.5},
                {"kineticFriction", 0.4}};
-  Sim sim(constraints(sceneOf(json::array({plank, ball}), floorSurface(0.0, 0.0))));
+  Sim sim(sceneOf(json::array({plank, ball}), floorSurface(0.0, 0.0)));
   auto horizontal = [&]() -> Eigen::Vector2d { return (sim.data.Y[0].P + sim.data.Y[1].P).head<2>(); };
   const Eigen::Vector2d start = horizontal();
   sim.run(0.5);
@@ -134,7 +132,7 @@ TEST(ConstraintSolver, TwoBodiesCollidingInFreeSpaceKeepTheirMomenta) {
                0.6);
   b["velocity"] = {-1.0, 0.0, 0.1};
   b["angularVelocity"] = {0.0, 4.0, -1.0};
-  json scene = constraints(sceneOf(json::array({a, b}), json::array()));
+  json scene = sceneOf(json::array({a, b}), json::array());
   scene["gravity"] = {0, 0, 0};
   Sim sim(scene);
   auto linear = [&] { return Vec3(sim.data.Y[0].P + sim.data.Y[1].P); };
@@ -160,7 +158,7 @@ TEST(ConstraintSolver, TwoBodiesCollidingInFreeSpaceKeepTheirMomenta) {
 // all: 2.9e-3 J measured at most; docs/decisions/0001-constraint-solver.md),
 // and the run ends below its start.
 TEST(ConstraintSolver, MechanicalEnergyRisesNoMoreThanTheOverlapsPushedOut) {
-  Sim sim(constraints(sceneOf(pile(27, 3), {floorSurface()}, 2e-3)));
+  Sim sim(sceneOf(pile(27, 3), {floorSurface()}, 2e-3));
   const EnergyRun e = runWatchingEnergy(sim, 1.5);
   EXPECT_LT(e.worstRise, 27.0 * kG * 15e-6);
   EXPECT_LT(e.end, e.start);
@@ -186,7 +184,7 @@ double rampError(const std::string& shape, double h) {
   const double mus = shape == "box" ? 0.5 : 0.6, mu = shape == "box" ? muk : 0.6;
   const double v0 = shape == "box" ? 0.5 : 0.0;  // m/s down the slope
   body["velocity"] = {v0 * down.x(), v0 * down.y(), v0 * down.z()};
-  Sim sim(constraints(sceneOf(body, rampSurface(turn, mus, mu, centre), h)));
+  Sim sim(sceneOf(body, rampSurface(turn, mus, mu, centre), h));
   sim.run(T);
   // sliding: g (sin - mu_k cos); rolling (sphere, I = 2/5 m r^2): g sin / (1 + 2/5)
   const double a = shape == "box" ? kG * (std::sin(theta) - muk * std::cos(theta)) : kG * std::sin(theta) / 1.4;
@@ -207,7 +205,7 @@ TEST(ConstraintSolver, BodiesInContactAreIntegratedToFirstOrder) {
 // Stands 10 s with sleep off: every body within 1 mm of where it was at 0.5 s, the
 // fastest below 1 mm/s at the end, no overlap deeper than 1 mm.
 void expectStands(const json& bodies, double step) {
-  Sim sim(constraints(sceneOf(bodies, {floorSurface()}, step)));
+  Sim sim(sceneOf(bodies, {floorSurface()}, step));
   const double drift = driftAfterSettling(sim, 0.5, 9.5);
   std::printf("drift %.3g m, fastest %.3g m/s, deepest overlap %.3g m\n", drift, sim.fastest(), sim.deepestOverlap());
   EXPECT_LT(drift, 1e-3);

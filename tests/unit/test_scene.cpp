@@ -125,31 +125,16 @@ TEST(Scene, UnknownBodyField) {
 
 TEST(Scene, UnknownSolverField) {
   EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"method": "rk4", "dt": 0.1}, )"),
-                     "solver.dt: unknown field (known: method, step, tolerance, energyGainLimit, contacts, sleep, "
-                     "sleepSpeed, sleepTime)");
+                     "solver.dt: unknown field (known: method, step, tolerance, energyGainLimit, sleep, sleepSpeed, "
+                     "sleepTime)");
 }
 
-TEST(Scene, ContactSolverIsSubstep) {
-  EXPECT_EQ(rigid::parseScene(sceneWith("", "")).model.contacts, rigid::ContactModel::Substep);
-  EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "manifold"}, )")).model.contacts,
-            rigid::ContactModel::Manifold);
-  EXPECT_EQ(rigid::parseScene(sceneWith("", R"("solver": {"contacts": "substep"}, )")).model.contacts,
-            rigid::ContactModel::Substep);
-  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "centroid"}, )"),
-                     "solver.contacts: \"centroid\" (the first contact model) was removed; must be \"manifold\"");
-  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "penalty"}, )"),
-                     "solver.contacts: must be \"manifold\" or \"substep\", got \"penalty\"");
-}
-
-// The experimental solvers "soft" (sub-stepped soft contacts) and "newton" (Newton
-// iterations) were removed: a scene that names one is refused, saying so.
-TEST(Scene, RemovedExperimentalContactSolversAreRefused) {
-  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "soft"}, )"),
-                     "solver.contacts: \"soft\" (an experimental contact solver) was removed; must be \"manifold\" or "
-                     "\"substep\"");
-  EXPECT_SCENE_ERROR(sceneWith("", R"("solver": {"contacts": "newton"}, )"),
-                     "solver.contacts: \"newton\" (an experimental contact solver) was removed; must be "
-                     "\"manifold\" or \"substep\"");
+// Contacts have one solver (issue 38): a scene that still chooses one, with any value,
+// is refused, saying so.
+TEST(Scene, ChoosingAContactSolverIsRefused) {
+  for (const char* value : {"\"manifold\"", "\"substep\"", "\"soft\"", "\"newton\"", "\"centroid\"", "1"})
+    EXPECT_SCENE_ERROR(sceneWith("", std::string(R"("solver": {"contacts": )") + value + "}, "),
+                       "solver.contacts: was removed: every contact has one solver now, the constraint solver");
 }
 
 TEST(Scene, SleepRules) {

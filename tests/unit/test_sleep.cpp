@@ -36,7 +36,7 @@ TEST(Sleep, AStackAtRestFallsAsleepAndHoldsItsPoseExactly) {
     EXPECT_EQ(sim.data.Y[i].X, held[i].X) << i;  // bitwise: no drift at all
     EXPECT_EQ(sim.data.Y[i].q.coeffs(), held[i].q.coeffs()) << i;
     EXPECT_TRUE(sim.data.Y[i].P.isZero(0.0) && sim.data.Y[i].L.isZero(0.0)) << i;
-    EXPECT_NEAR(sim.data.Y[i].X.z(), kEdge * (0.5 + i), 3e-4) << i;  // on its seats (slop 0.1 mm each)
+    EXPECT_NEAR(sim.data.Y[i].X.z(), kEdge * (0.5 + i), 3e-4) << i;  // on its seats (sinking under 0.1 mm each)
     EXPECT_EQ(sim.data.contacts[i], contacts[i]) << i;
     EXPECT_GT(contacts[i], 0) << i;
   }

@@ -1,5 +1,5 @@
-"""The manifold contact solver (`"solver": {"contacts": "manifold"}`) through the FMU: a
-cube set down on an edge falls flat, a ball rolls without slipping, a box stays seated
+"""Contact manifolds (up to 4 points per touching pair) through the FMU: a cube set
+down on an edge falls flat, a ball rolls without slipping, a box stays seated
 on another; the FMU validates; its state (the contact memory with the impulses that
 warm-start the next step) saved, restored and serialised continues bitwise."""
 import math
@@ -27,7 +27,6 @@ def manifold_scene():
         body("top", shape={"type": "box", "size": [0.1, 0.1, 0.1]}, mass=0.5, position=[3.02, 0.01, 0.25],
              restitution=0.0),
     ])
-    s["solver"]["contacts"] = "manifold"
     s["surfaces"] = [{"name": "floor", "min": [-10, -10, -1], "max": [10, 10, 0],
                       "staticFriction": 0.6, "kineticFriction": 0.5, "restitution": 0.0}]
     return s
@@ -67,8 +66,8 @@ def test_bodies_tip_roll_and_rest_through_the_fmu(fmu):
         # the ball rolls without slipping: v stays 1 m/s, 2 m in 2 s
         assert s.get("ball.velocity[1]") == pytest.approx(1.0, rel=1e-2)
         assert s.get("ball.position[1]") == pytest.approx(2.0, abs=0.02)
-        # the small box sits on the large one: its centre at 0.2 + 0.05 m, the slop's
-        # sub-millimetre seats below that
+        # the small box sits on the large one: its centre at 0.2 + 0.05 m, the soft
+        # contacts' sub-micrometre seats below that
         assert s.get("top.position[3]") == pytest.approx(0.25, abs=1e-3)
         top, base = s.slave.getInteger(s.vr(["top.contacts", "base.contacts"]))
         assert top >= 4 and base >= 8  # a face on a face: four corners each

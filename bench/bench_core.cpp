@@ -6,19 +6,15 @@
 //     steps of 2 ms) per iteration from the same start; counters split the time into
 //     integration, broadphase, narrowphase and response (WorldData::profile) and give
 //     the deepest penetration seen (m) and the fastest body's speed at the end (m/s).
-//   BM_PileManifold/<N>: the same pile answered by the manifold contact solver
-//     (pile_manifold_<N>.json), 3 s of simulated time per iteration: the CPU time of
-//     the first second (falling) and of the third (at rest, after 2 s), each split into
-//     the stages' wall times with the solver's velocity iterations and solves; the
-//     deepest overlap in the output state, the fastest body's speed at 1 s and 3 s, and
-//     the bodies asleep at 3 s (sleep.h; the scene's default rules); and the steps whose
-//     solve ran its passes to the cap, with the points they answered and solved.
-//   BM_PileAwake/<N>: BM_PileManifold with sleep off (solver.sleep false): the solver
+//   BM_PileWindows/<N>: the same pile (pile_<N>.json), 3 s of simulated time per
+//     iteration: the CPU time of the first second (falling) and of the third (at rest,
+//     after 2 s), each split into the stages' wall times with the constraint solver's
+//     solves and the contact points they answered; the deepest overlap in the output
+//     state, the fastest body's speed at 1 s and 3 s, and the bodies asleep at 3 s
+//     (sleep.h; the scene's default rules).
+//   BM_PileAwake/<N>: BM_PileWindows with sleep off (solver.sleep false): the solver
 //     alone, every body awake to the end.
-//   BM_PileSubstep/<N>, BM_PileSubstepAwake/<N>: BM_PileManifold and BM_PileAwake on
-//     pile_substep_<N>.json, the pile answered by the constraint solver on trial
-//     (solver.contacts "substep"; its solves take no counted iterations).
-//   BM_PileWide/<N>: BM_PileManifold on pile_wide_<N>.json, N cubes in columns of the
+//   BM_PileWide/<N>: BM_PileWindows on pile_wide_<N>.json, N cubes in columns of the
 //     pile of 100's height: growth from 100 cubes at equal height.
 #include <benchmark/benchmark.h>
 #include <time.h>  // clock_gettime, CLOCK_THREAD_CPUTIME_ID (POSIX)
@@ -33,7 +29,6 @@
 #include <vector>
 
 #include "collision_cache.h"
-#include "contact_solver.h"
 #include "scene.h"
 #include "world.h"
 
@@ -177,7 +172,7 @@ double threadCpuSeconds() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-// One timed window of BM_PileManifold (a simulated second), summed over the runs: the
+// One timed window of BM_PileWindows (a simulated second), summed over the runs: the
 // steps' CPU and wall time, and what WorldData::profile gained over them. The profile
 // reads the wall clock, so the stages are shares of the steps' wall time.
 struct Window {
@@ -185,9 +180,6 @@ struct Window {
   double wall = 0.0;  // ns, steady_clock: the profile's clock
   rigid::StepProfile profile;
   long steps = 0;
-  // the steps whose solve ran the manifold solver's passes to their cap (some island had
-  // not settled), and the points they answered and solved
-  long stepsAtCap = 0, pointsAtCap = 0, rowSolvesAtCap = 0;
   void add(double cpuSeconds, double wallNs, const rigid::StepProfile& before, const rigid::StepProfile& after) {
     cpu += cpuSeconds;
     wall += wallNs;
@@ -196,21 +188,16 @@ struct Window {
     profile.narrowphase += after.narrowphase - before.narrowphase;
     profile.response += after.response - before.response;
     profile.solves += after.solves - before.solves;
-    profile.iterations += after.iterations - before.iterations;
-    profile.rowSolves += after.rowSolves - before.rowSolves;
     profile.points += after.points - before.points;
     ++steps;
-    if (after.iterations - before.iterations < rigid::contact_solver::kMaxVelocityIterations) return;
-    ++stepsAtCap;
-    pointsAtCap += after.points - before.points;
-    rowSolvesAtCap += after.rowSolves - before.rowSolves;
   }
 };
 
 void windowCounters(benchmark::State& state, const std::string& name, const Window& w, double runs) {
   // per run: the window is one simulated second, so its CPU time is the time per
-  // simulated second; the stages stay in ns so that bench.py takes their shares of the
-  // wall time from the same (median) figures and "other" is the rest of it
+  // simulated second; the stages stay in ns so that the report (performance.py) takes
+  // their shares of the wall time from the same (median) figures and "other" is the
+  // rest of it
   state.counters[name + "_cpu_s"] = w.cpu / runs;
   state.counters[name + "_wall_ns"] = w.wall / runs;
   state.counters[name + "_ns_integration"] = w.profile.integration / runs;
@@ -219,24 +206,20 @@ void windowCounters(benchmark::State& state, const std::string& name, const Wind
   state.counters[name + "_ns_response"] = w.profile.response / runs;
   state.counters[name + "_steps"] = static_cast<double>(w.steps) / runs;
   state.counters[name + "_solves"] = static_cast<double>(w.profile.solves) / runs;
-  auto perSolve = [&](long count) {
-    return w.profile.solves ? static_cast<double>(count) / static_cast<double>(w.profile.solves) : 0.0;
-  };
-  state.counters[name + "_points_per_solve"] = perSolve(w.profile.points);
-  state.counters[name + "_row_solves_per_solve"] = perSolve(w.profile.rowSolves);
-  state.counters[name + "_iterations_per_solve"] = perSolve(w.profile.iterations);
-  state.counters[name + "_steps_at_cap"] = static_cast<double>(w.stepsAtCap) / runs;
-  state.counters[name + "_points_at_cap"] = static_cast<double>(w.pointsAtCap) / runs;
-  state.counters[name + "_row_solves_at_cap"] = static_cast<double>(w.rowSolvesAtCap) / runs;
+  // the solver's work: its sub-steps and relax passes are fixed, so what a solve costs
+  // grows with the points it answers (0 when every island is asleep)
+  state.counters[name + "_points_per_solve"] =
+      w.profile.solves ? static_cast<double>(w.profile.points) / static_cast<double>(w.profile.solves) : 0.0;
 }
 
 // The pile of BM_Pile over 3 simulated seconds from the same start. BM_Pile's first
-// second (falling, impacts) is only half the story: the third second, after 2 s, times the pile at rest,
-// where the solver's warm start and skipped rows are meant to pay. Each window is timed
+// second (falling, impacts) is only half the story: the third second, after 2 s, times
+// the pile at rest, where the solver's warm start and sleeping islands are meant to
+// pay. Each window is timed
 // step by step with this thread's CPU clock, the probes outside it; the State's own
 // timed region is the first second (as BM_Pile's), so the console's CPU column reads
 // like BM_Pile's, but the report takes the windows' counters.
-void pileManifold(benchmark::State& state, const std::string& file, bool sleep) {
+void pileWindows(benchmark::State& state, const std::string& file, bool sleep) {
   rigid::Scene scene = load(file);
   scene.model.sleep.enabled = sleep;
   const double h = scene.model.maxStep;
@@ -312,20 +295,15 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("BM_Pile/" + std::to_string(n)).c_str(), pile, n)
         ->Unit(benchmark::kMillisecond)
         ->Iterations(1);
+  // sleep on with the scene's rules (the default), and sleep off: the solver alone
   for (int n : {10, 100, 1000})
     for (bool sleep : {true, false})
-      benchmark::RegisterBenchmark(((sleep ? "BM_PileManifold/" : "BM_PileAwake/") + std::to_string(n)).c_str(),
-                                   pileManifold, "pile_manifold_" + std::to_string(n) + ".json", sleep)
-          ->Unit(benchmark::kMillisecond)
-          ->Iterations(1);
-  for (int n : {10, 100, 1000})
-    for (bool sleep : {true, false})
-      benchmark::RegisterBenchmark(((sleep ? "BM_PileSubstep/" : "BM_PileSubstepAwake/") + std::to_string(n)).c_str(),
-                                   pileManifold, "pile_substep_" + std::to_string(n) + ".json", sleep)
+      benchmark::RegisterBenchmark(((sleep ? "BM_PileWindows/" : "BM_PileAwake/") + std::to_string(n)).c_str(),
+                                   pileWindows, "pile_" + std::to_string(n) + ".json", sleep)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
   // the wide pile's count: bench.py's WIDE_PILE
-  benchmark::RegisterBenchmark("BM_PileWide/1024", pileManifold, std::string("pile_wide_1024.json"), true)
+  benchmark::RegisterBenchmark("BM_PileWide/1024", pileWindows, std::string("pile_wide_1024.json"), true)
       ->Unit(benchmark::kMillisecond)
       ->Iterations(1);
   benchmark::RunSpecifiedBenchmarks();

@@ -12,13 +12,14 @@ here is asserted; the targets are printed with PASS or MISS.
    report's reference), ours and theirs, so that ratios are quoted at equal accuracy;
    then the pile of 1000 (100 in quick mode) timed again, ours and theirs interleaved
    round by round, the ratio its target is judged on.
-4. The contact solver's piles over 3 s (BM_PileManifold, scenes that name
-   solver.contacts = "manifold", the default), timed while they fall (first second) and at rest (third
-   second), with the stages' shares, the solver's iterations per solve, the overlap in
-   the output state and the fastest body at 3 s; the pile of 1000 (100 in quick mode)
-   at rest timed round by round with MuJoCo's at rest (Euler), the ratio its target is
-   judged on; the two largest piles again with the cubes tilted by other patterns
-   (OTHER_TILTS), since a fall is chaotic and one fall's growth may be its own.
+4. The same piles over 3 s (BM_PileWindows, answered by the constraint solver, the one
+   contact solver), timed while they fall (first second) and at rest (third second),
+   with the stages' shares, the contact points per solve, the overlap in the output
+   state and the fastest body at 3 s, and again with sleep off (BM_PileAwake); the pile
+   of 1000 (100 in quick mode) at rest timed round by round with MuJoCo's at rest
+   (Euler), the ratio its target is judged on; the wide pile (BM_PileWide); the two
+   largest piles again with the cubes tilted by other patterns (OTHER_TILTS), since a
+   fall is chaotic and one fall's growth may be its own.
 5. Writes OUT/performance.md, OUT/performance/*.png and OUT/performance/bench.json.
 
 Times are CPU times (the machine is shared), medians of repeats.
@@ -53,7 +54,7 @@ PEERS_PYTHON = ROOT / ".venv-peers" / "bin" / "python"
 RK4_TARGET_NS = 100.0        # ns per body-step, free bodies, rk4, N = 1000
 PILE_RATIO_TARGET = 0.5      # our time per simulated second / MuJoCo's, pile of 1000
 PENETRATION_TARGET = 1e-3    # m
-# the stages of WorldData::profile, in the manifold section's order
+# the stages of WorldData::profile, in the 3 s piles' section's order
 STAGES = ("integration", "broadphase", "narrowphase", "response")
 
 
@@ -96,8 +97,8 @@ def run_core(build, scenes, quick, pattern=None, reps=1):
             parts = b["run_name"].split("/")
             if parts[0] == "BM_Free":
                 key = ("free", parts[1], int(parts[2]))
-            elif parts[0] == "BM_PileManifold":
-                key = ("manifold", int(parts[1]))
+            elif parts[0] == "BM_PileWindows":
+                key = ("windows", int(parts[1]))
             elif parts[0] == "BM_PileAwake":
                 key = ("awake", int(parts[1]))
             elif parts[0] == "BM_PileWide":
@@ -144,12 +145,13 @@ def pile_table(core):
     return dict(sorted(out.items()))
 
 
-def manifold_figures(b):
-    """The figures of one BM_PileManifold entry: per window (fall: 0-1 s, rest: 2-3 s)
-    the CPU time per simulated second and per step, the stages' shares of the steps'
-    wall time (the profile's clock; "other" is the rest of the step), the solver's
-    velocity iterations per solve; and over the run the overlap in the output state and
-    the fastest body's speed at 1 s and 3 s."""
+def window_figures(b):
+    """The figures of one BM_PileWindows (or BM_PileAwake, BM_PileWide) entry: per window
+    (fall: 0-1 s, rest: 2-3 s) the CPU time per simulated second and per step, the
+    stages' shares of the steps' wall time (the profile's clock; "other" is the rest of
+    the step), the solves per step and the contact points per solve (the solver's work:
+    its sub-steps are fixed); and over the run the overlap in the output state, the
+    fastest body's speed at 1 s and 3 s and the bodies asleep at 3 s."""
     out = {"steps_ok": b["steps_ok"], "steps": b["steps_planned"],
            "max_overlap_state_m": b["max_overlap_state_m"], "max_overlap_rest_m": b["max_overlap_rest_m"],
            "max_speed_1s_mps": b["max_speed_1s_mps"], "max_speed_3s_mps": b["max_speed_3s_mps"],
@@ -164,15 +166,9 @@ def manifold_figures(b):
                   "s_per_simulated_s": cpu / (steps * bench_scenes.PILE_STEP) if steps else math.nan,
                   "us_per_step": cpu / steps * 1e6 if steps else math.nan,
                   "shares": shares, "solves_per_step": solves / steps if steps else math.nan,
-                  "iterations_per_solve": b[f"{w}_iterations_per_solve"] if solves else math.nan,
-                  # points answered, and points solved over the passes (a settled one skipped)
-                  "points_per_solve": b.get(f"{w}_points_per_solve", math.nan) if solves else math.nan,
-                  "point_solves_per_solve": b.get(f"{w}_row_solves_per_solve", math.nan) if solves else math.nan,
-                  # the steps whose passes ran to the cap (some island not settled), with
-                  # the points they answered and solved
-                  "steps_at_cap": b.get(f"{w}_steps_at_cap", math.nan),
-                  "points_at_cap": b.get(f"{w}_points_at_cap", math.nan),
-                  "point_solves_at_cap": b.get(f"{w}_row_solves_at_cap", math.nan)}
+                  # the contact points a solve answered, each through the same fixed
+                  # sub-steps and relax pass
+                  "points_per_solve": b[f"{w}_points_per_solve"] if solves else math.nan}
     return out
 
 
@@ -183,8 +179,8 @@ def median_entry(entries):
             if isinstance(v, (int, float))}
 
 
-def run_manifold(build, scenes, folder, quick):
-    """BM_PileManifold over the pile counts. The largest pile (1000; 100 in quick mode)
+def run_windows(build, scenes, folder, quick):
+    """BM_PileWindows over the pile counts. The largest pile (1000; 100 in quick mode)
     is timed round by round with MuJoCo's at rest, ours once then theirs once, each in
     its own process (as interleaved_pile_ratio does for the first second): its figures
     are the medians over the rounds, so that the rounds are also its repetitions and the
@@ -195,31 +191,31 @@ def run_manifold(build, scenes, folder, quick):
     big, rounds = counts[-1], 1 if quick else 3
     entries = {}
     if len(counts) > 1:
-        small, _ = run_core(build, scenes, quick, pattern=f"^BM_PileManifold/({'|'.join(map(str, counts[:-1]))})/",
+        small, _ = run_core(build, scenes, quick, pattern=f"^BM_PileWindows/({'|'.join(map(str, counts[:-1]))})/",
                             reps=1 if quick else 3)
         entries.update({k[1]: b for k, b in small.items()})
     interleaved = None
     if PEERS_PYTHON.exists():
         runs, rows = [], []
         for _ in range(rounds):
-            ours, _ = run_core(build, scenes, quick, pattern=f"^BM_PileManifold/{big}/", reps=1)
-            runs.append(ours[("manifold", big)])
-            mine = manifold_figures(runs[-1])["rest"]["s_per_simulated_s"]
+            ours, _ = run_core(build, scenes, quick, pattern=f"^BM_PileWindows/{big}/", reps=1)
+            runs.append(ours[("windows", big)])
+            mine = window_figures(runs[-1])["rest"]["s_per_simulated_s"]
             out = pathlib.Path(folder) / "pile_rest_timing.json"
             subprocess.run([str(PEERS_PYTHON), "-m", "rigidfmu.reports.performance_peers", str(scenes), str(out),
                             "--pile-timing", str(big), "--at-rest"], check=True)
             theirs = json.loads(out.read_text())["s_per_simulated_s"]
             rows.append({"ours": mine, "mujoco": theirs, "ratio": mine / theirs})
-            log(f"manifold pile {big} at rest, round {len(rows)}: ours {mine:.3g} s, MuJoCo {theirs:.3g} s "
+            log(f"pile {big} at rest, round {len(rows)}: ours {mine:.3g} s, MuJoCo {theirs:.3g} s "
                 f"per simulated s, ratio {mine / theirs:.2f}")
         entries[big] = median_entry(runs)
         interleaved = {"n": big, "rounds": rows, "ratio": statistics.median(r["ratio"] for r in rows)}
     else:
-        ours, _ = run_core(build, scenes, quick, pattern=f"^BM_PileManifold/{big}/", reps=rounds)
-        entries[big] = ours[("manifold", big)]
+        ours, _ = run_core(build, scenes, quick, pattern=f"^BM_PileWindows/{big}/", reps=rounds)
+        entries[big] = ours[("windows", big)]
     awake, _ = run_core(build, scenes, quick, pattern=f"^BM_PileAwake/({'|'.join(map(str, counts))})/", reps=1)
-    return ({n: manifold_figures(entries[n]) for n in sorted(entries)}, interleaved,
-            {k[1]: manifold_figures(b) for k, b in sorted(awake.items())})
+    return ({n: window_figures(entries[n]) for n in sorted(entries)}, interleaved,
+            {k[1]: window_figures(b) for k, b in sorted(awake.items())})
 
 
 # Other tilt patterns (rigidfmu.scenes.bench --tilt) than the benchmark's: a falling pile
@@ -229,7 +225,7 @@ OTHER_TILTS = ((1.3, 2.9), (0.7, 1.9), (2.1, 3.1))
 
 
 def run_tilts(build, folder, quick):
-    """BM_PileManifold's two largest piles (10 and 100 in quick mode) once under each of
+    """BM_PileWindows's two largest piles (10 and 100 in quick mode) once under each of
     OTHER_TILTS, their scenes written to `folder`: {"A,B": {n: figures}}."""
     counts = bench_scenes.PILE_COUNTS[:2] if quick else bench_scenes.PILE_COUNTS[-2:]
     out = {}
@@ -237,9 +233,9 @@ def run_tilts(build, folder, quick):
         scenes = pathlib.Path(folder) / f"tilt_{tilt[0]}_{tilt[1]}"
         scenes.mkdir(parents=True, exist_ok=True)
         for n in counts:  # only the scenes this run reads
-            (scenes / f"pile_manifold_{n}.json").write_text(json.dumps(bench_scenes.pile_manifold_scene(n, tilt)))
-        core, _ = run_core(build, scenes, quick, pattern=f"^BM_PileManifold/({'|'.join(map(str, counts))})/")
-        out[f"{tilt[0]},{tilt[1]}"] = {k[1]: manifold_figures(b) for k, b in sorted(core.items())}
+            (scenes / f"pile_{n}.json").write_text(json.dumps(bench_scenes.pile_scene(n, tilt=tilt)))
+        core, _ = run_core(build, scenes, quick, pattern=f"^BM_PileWindows/({'|'.join(map(str, counts))})/")
+        out[f"{tilt[0]},{tilt[1]}"] = {k[1]: window_figures(b) for k, b in sorted(core.items())}
     return out
 
 
@@ -250,7 +246,7 @@ def run_wide(build, scenes, quick):
     if quick:
         return {}
     wide, _ = run_core(build, scenes, quick, pattern=f"^BM_PileWide/{bench_scenes.WIDE_PILE}/", reps=3)
-    return {k[1]: manifold_figures(b) for k, b in sorted(wide.items())}
+    return {k[1]: window_figures(b) for k, b in sorted(wide.items())}
 
 
 # ----------------------------------------------------------------------------------
@@ -451,8 +447,8 @@ def targets(free, piles, peers, interleaved=None):
     big = max(piles) if piles else None
     if big is not None:
         # judged on the state a step hands back (what the FMU outputs and what MuJoCo's
-        # figure is of); the step's own last detection, before its position correction,
-        # is an intermediate state, shown beside it
+        # figure is of); the step's own last detection, before its response moved the
+        # bodies, is an intermediate state, shown beside it
         pen = piles[big]["max_penetration_m"]
         state = piles[big]["max_overlap_state_m"]
         rows.append((f"pile of {big}: penetration ≤ 1 mm",
@@ -467,16 +463,16 @@ def targets(free, piles, peers, interleaved=None):
     return rows
 
 
-def equal_height_targets(manifold, wide):
+def equal_height_targets(windows, wide):
     """Growth from the pile of 100 (5 x 5 columns of 4) to the wide pile (16 x 16 columns
     of 4): N grows, the columns' height does not."""
     rows = []
-    if 100 not in manifold:
+    if 100 not in windows:
         return rows
     for n, m in wide.items():
         limit = nlogn_slope(100, n)
         for w, name in (("fall", "falling"), ("rest", "at rest")):
-            a, b = manifold[100][w]["us_per_step"], m[w]["us_per_step"]
+            a, b = windows[100][w]["us_per_step"], m[w]["us_per_step"]
             if not (math.isfinite(a) and math.isfinite(b)):
                 continue
             s = slope(100, a, n, b)
@@ -486,15 +482,15 @@ def equal_height_targets(manifold, wide):
     return rows
 
 
-def manifold_targets(manifold, peers, interleaved):
-    """The manifold solver's targets: its pile of 1000 at rest against MuJoCo's default
-    at rest (judged on the interleaved rounds), the overlap in the output state over the
-    3 s, and the growth of a step's time at rest. Growth is judged where the piles of 100
-    and 1000 are at the same outcome: at rest here, and falling in columns of one height
-    in equal_height_targets. (The cube-root piles' falling seconds are different events,
-    columns of 4 and of 10: manifold_checks.)"""
+def windows_targets(windows, peers, interleaved):
+    """The targets of the piles over 3 s: the pile of 1000 at rest against MuJoCo's
+    default at rest (judged on the interleaved rounds), the overlap in the output state
+    over the 3 s, and the growth of a step's time at rest. Growth is judged where the
+    piles of 100 and 1000 are at the same outcome: at rest here, and falling in columns of
+    one height in equal_height_targets. (The cube-root piles' falling seconds are
+    different events, columns of 4 and of 10: windows_checks.)"""
     rows = []
-    label = "manifold, pile of 1000 at rest (2–3 s): time per simulated second ≤ 0.5x MuJoCo's (Euler, at rest)"
+    label = "pile of 1000 at rest (2–3 s): time per simulated second ≤ 0.5x MuJoCo's (Euler, at rest)"
     if interleaved and interleaved["n"] == 1000:
         rounds = ", ".join(f"{r['ratio']:.2f}" for r in interleaved["rounds"])
         rows.append((label, f"ratio {interleaved['ratio']:.2f}, the median of {len(interleaved['rounds'])} "
@@ -502,14 +498,14 @@ def manifold_targets(manifold, peers, interleaved):
                      "PASS" if interleaved["ratio"] <= PILE_RATIO_TARGET else "MISS"))
     else:
         rows.append((label, "not measured (quick run: no pile of 1000)" if peers else "not measured (no MuJoCo)", "–"))
-    if manifold:
-        big = max(manifold)
-        m = manifold[big]
-        rows.append((f"manifold, pile of {big}: penetration ≤ 1 mm",
+    if windows:
+        big = max(windows)
+        m = windows[big]
+        rows.append((f"pile of {big} over 3 s: penetration ≤ 1 mm",
                      f"{m['max_overlap_state_m'] * 1e3:.2f} mm in the output state over 0–3 s "
                      f"({m['max_overlap_rest_m'] * 1e3:.2f} mm at rest, 2–3 s)",
                      "PASS" if m["max_overlap_state_m"] <= PENETRATION_TARGET else "MISS"))
-    rows += growth_rows(manifold, "rest", "manifold at rest")
+    rows += growth_rows(windows, "rest", "piles at rest")
     return rows
 
 
@@ -521,12 +517,12 @@ def growth_rows(piles, window, label):
              "PASS" if s <= limit else "MISS") for a, b, s, limit in growth(pts)]
 
 
-def manifold_checks(manifold, interleaved, awake=None):
+def windows_checks(windows, interleaved, awake=None):
     """Figures held to the targets' bounds that are not targets: the cube-root piles'
     falling growth (from columns of 4 to columns of 10, whose tops land at 1.7 and 2.7
     m/s: different falls, not more of one), and the piles with sleep off (the solver
     alone) against the interleaved rounds' MuJoCo figure."""
-    rows = growth_rows(manifold, "fall", "manifold falling, cube-root piles")
+    rows = growth_rows(windows, "fall", "falling, cube-root piles")
     if awake and interleaved and interleaved["n"] in awake:
         n = interleaved["n"]
         theirs = statistics.median(r["mujoco"] for r in interleaved["rounds"])
@@ -539,7 +535,7 @@ def manifold_checks(manifold, interleaved, awake=None):
     return rows
 
 
-def plots(out_dir, free, piles, peers, manifold=None):
+def plots(out_dir, free, piles, peers, windows=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -568,11 +564,11 @@ def plots(out_dir, free, piles, peers, manifold=None):
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.6))
     ns = sorted(piles)
     ax.loglog(ns, [piles[n]["total_us"] for n in ns], "o-", lw=2.4, label="rigidfmu (rk4, BM_Pile: 0–1 s)")
-    if manifold:
-        ms = sorted(manifold)
+    if windows:
+        ms = sorted(windows)
         for w, style, name in (("fall", "D-", "falling, 0–1 s"), ("rest", "D--", "at rest, 2–3 s")):
-            ax.loglog(ms, [manifold[n][w]["us_per_step"] for n in ms], style, lw=1.4,
-                      label=f"rigidfmu manifold solver, {name}")
+            ax.loglog(ms, [windows[n][w]["us_per_step"] for n in ms], style, lw=1.4,
+                      label=f"rigidfmu (BM_PileWindows), {name}")
     for integ, style in (("Euler", "s--k"), ("RK4", "^:k")):
         rows = [r for r in (peers or {}).get("piles", []) if r["integrator"] == integ]
         if rows:
@@ -647,9 +643,8 @@ def write_markdown(path, r):
       "and MuJoCo run the same files. *Free*: N torque-free tumbling boxes, inertia "
       "diag(1, 2, 3) kg m², no gravity, no collisions, h = 1 ms. *Pile*: N cubes of 0.1 m "
       "and 1 kg (restitution 0, friction 0.6) in columns above a floor, falling for 1 s "
-      "of simulated time, h = 2 ms (MuJoCo's default timestep). *Manifold piles* "
-      "(`pile_manifold_<N>.json`): the same bodies and floor with `\"solver\": {\"contacts\": "
-      "\"manifold\"}` named (the default), over 3 s.\n")
+      "of simulated time, h = 2 ms (MuJoCo's default timestep); the same files over 3 s for "
+      "the piles falling and at rest. Every contact is answered by the constraint solver.\n")
     w("![free bodies](performance/free_bodies.png)\n")
     w("![piles](performance/piles.png)\n")
 
@@ -657,8 +652,8 @@ def write_markdown(path, r):
     w("| target | measured | |\n|---|---|---|")
     for label, value, status in targets_rows:
         w(f"| {label} | {value} | **{status}** |")
-    w("\nThe contact solver's targets for piles at rest are in "
-      "[its section](#manifold-contact-solver).\n")
+    w("\nThe targets for piles at rest are in "
+      "[their section](#piles-over-3-s-falling-and-at-rest).\n")
 
     w("## Core: free bodies (ns per body-step)\n")
     w("`rigid-bench-core`, `BM_Free/<method>/<N>`: one world step of N bodies divided by N.\n")
@@ -676,8 +671,9 @@ def write_markdown(path, r):
     w("## Core: piles of cubes (µs per step)\n")
     w("`BM_Pile/<N>`: 1 s of simulated time from the same start; the phases are "
       "`WorldData::profile` (broadphase: poses, bounding boxes, the sweep in grid rows and its candidate "
-      "pairs; narrowphase: contact points; response: impulses, friction, position correction, "
-      "landings; integration: the integrator's stages, the impact location's re-integrations "
+      "pairs; narrowphase: contact points; response: the constraint solver (impacts, its "
+      "sub-steps, the impulses kept for the warm start); integration: the integrator's stages, "
+      "the impact location's re-integrations "
       "included); *other* is the rest of the step (auxiliaries, bookkeeping, clock reads). "
       "The profile reads the wall clock: each phase is its share of the wall time applied "
       "to the CPU time. "
@@ -686,8 +682,8 @@ def write_markdown(path, r):
       "hands back (what the FMU outputs; MuJoCo's `-contact.dist` is of its state too), "
       "measured as the pair's penetration depth (the shortest translation that separates the "
       "two boxes). This is the figure the target is judged on. *Before the response* is the "
-      "deepest contact point of the step's own last detection, before its position "
-      "correction: an intermediate state, whose tilted face contacts' point depths can exceed "
+      "deepest contact point of the step's own last detection, before the solver moved the "
+      "bodies: an intermediate state, whose tilted face contacts' point depths can exceed "
       "the pair's penetration.\n")
     w("| N | broadphase | narrowphase | response | integration | other | total per step | "
       "per simulated second | max penetration before the response | in the output state | "
@@ -781,9 +777,9 @@ def write_markdown(path, r):
               (f"rk4, h {o['dt']:g} | {o['error_rad']:.2g} rad | **{e['ratio']:.3f}** |" if o else
                "none of our steps reaches it | – | – |"))
         w("")
-    write_manifold_section(w, r)
+    write_windows_section(w, r)
     w("## How it is measured\n")
-    w("- `./scripts/bench.sh` (`--quick`: fewer repeats, no 10000 free bodies, no pile of 1000 with either solver; "
+    w("- `./scripts/bench.sh` (`--quick`: fewer repeats, no 10000 free bodies, no pile of 1000; "
       "the test suite runs it and checks that the report is complete, never the times).")
     w("- Core: Google Benchmark, CPU time; free bodies: repetitions with the median "
       "aggregate; piles: one simulated second per repetition (the same start each time), "
@@ -791,7 +787,7 @@ def write_markdown(path, r):
     w("- FMU: `time.process_time` around loops of fmpy calls; warm-up calls first.")
     w("- MuJoCo: `time.process_time` around `mj_step(m, d, nstep)`; penetration and "
       "contacts from a separate, untimed run.")
-    w("- Manifold piles: 3 s per repetition, each step timed by the thread's CPU clock (Google "
+    w("- Piles over 3 s: 3 s per repetition, each step timed by the thread's CPU clock (Google "
       "Benchmark's) and the steady clock (the profile's), the probes outside; the largest pile's "
       "repetitions are the rounds interleaved with MuJoCo's at rest, medians over them.")
     w("- Raw figures: `performance/bench.json`.")
@@ -803,121 +799,83 @@ def pct(x):
 
 
 def fall_work(piles):
-    """{n: points solved per solve while the pile falls} of the piles that solved any. They
-    count the passes' work exactly, without the machine's noise: the same solves each run
-    (a step is deterministic)."""
-    return {int(n): m["fall"]["point_solves_per_solve"] for n, m in piles.items()
-            if m["fall"]["point_solves_per_solve"] > 0}
+    """{n: contact points per solve while the pile falls} of the piles that solved any.
+    Every point goes through the solver's same fixed sub-steps and relax pass, so they
+    count its work exactly, without the machine's noise: the same solves each run (a
+    step is deterministic)."""
+    return {int(n): m["fall"]["points_per_solve"] for n, m in piles.items()
+            if m["fall"]["points_per_solve"] > 0}
 
 
-def pile_entry(piles, n):
-    """The entry of the pile of n cubes, keyed by n or by its string (as bench.json has it)."""
-    return piles[n] if n in piles else piles[str(n)]
-
-
-def write_manifold_section(w, r):
-    manifold, peers, il = r.get("manifold") or {}, r["peers"], r.get("manifold_interleaved")
+def write_windows_section(w, r):
+    windows, peers, il = r.get("windows") or {}, r["peers"], r.get("windows_interleaved")
     piles = r["piles"]
-    w("## Manifold contact solver\n")
-    w("`BM_PileManifold/<N>`: the piles above answered by the manifold solver "
-      "(`\"solver\": {\"contacts\": \"manifold\"}`, `pile_manifold_<N>.json`: same bodies, floor "
-      "and step), 3 s of simulated time from the same start. `BM_Pile` times the first second as "
-      "a whole; this one times the first second "
+    w("## Piles over 3 s: falling and at rest\n")
+    w("`BM_PileWindows/<N>`: the piles above (`pile_<N>.json`: same bodies, floor and step, "
+      "answered by the constraint solver), 3 s of simulated time from the same start. `BM_Pile` "
+      "times the first second as a whole; this one times the first second "
       "(*falling*) and the third (*at rest*, after 2 s untimed), each step by this thread's CPU "
       "clock with the probes outside. *Stages*: `WorldData::profile` over the window's steps, "
       "as shares of their wall time (the profile's clock); *other* is the rest of the step. "
-      "*Iterations per solve*: the solver's velocity iterations (`profile.iterations / "
-      "profile.solves`). Overlap: in the output state, as for the piles above, the deepest over "
+      "*Points per solve*: the contact points the solver answered (`profile.points / "
+      "profile.solves`; each goes through the same fixed sub-steps, so this is the solve's "
+      "work). Overlap: in the output state, as for the piles above, the deepest over "
       "all steps of the 3 s and over the third second. `BM_Pile`'s time per simulated "
       "second (the same solve's first second, timed as a whole) stands beside.\n")
-    if not manifold:
+    if not windows:
         w("Not measured in this run.\n")
         return
     w("| target | measured | |\n|---|---|---|")
-    for label, value, status in r["manifold_targets"]:
+    for label, value, status in r["windows_targets"]:
         w(f"| {label} | {value} | **{status}** |")
     w("")
-    checks = r.get("manifold_checks") or []
+    checks = r.get("windows_checks") or []
     if checks:
         w("The growth targets compare piles at the same outcome: at rest (2–3 s, every pile still), and "
           f"falling in columns of one height (*equal height*, columns of {bench_scenes.WIDE_LAYERS} at 100 "
           "and at 1024 cubes: the same fall, ten times over). The cube-root piles' falling seconds are "
           "different falls: the pile of 100 stands in columns of 4, the pile of 1000 in columns of 10, "
           "whose top cube drops 0.38 m onto its column (2.7 m/s at landing, against 0.14 m and 1.7 m/s), "
-          "lands later and rocks longer. A solver that works until the contacts are solved pays for "
-          "that longer settling (the decomposition below), so their growth is printed beside the "
-          "targets, held to the same bound, with the solver's figures with sleep off:\n")
+          "lands later and rocks longer, with more of its points in the solves for longer. Their "
+          "growth is printed beside the targets, held to the same bound, with the solver's figures "
+          "with sleep off:\n")
         w("| check (not a target) | measured | |\n|---|---|---|")
         for label, value, status in checks:
             w(f"| {label} | {value} | **{status}** |")
         w("")
     w("| N | falling: per step | falling: per simulated second | at rest: per step | at rest: per "
-      "simulated second | BM_Pile per simulated second, falling | iterations per solve, "
-      "falling | iterations per solve, at rest | max overlap in the output state, 0–3 s | at rest, "
+      "simulated second | BM_Pile per simulated second, falling | points per solve, "
+      "falling | points per solve, at rest | max overlap in the output state, 0–3 s | at rest, "
       "2–3 s | fastest body at 1 s | fastest body at 3 s | asleep at 3 s |")
     w("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
-    for n, m in manifold.items():
+    for n, m in windows.items():
         f, s = m["fall"], m["rest"]
         old = piles.get(n)
         w(f"| {n} | {f['us_per_step']:.1f} µs | {fmt_s(f['s_per_simulated_s'])} | {s['us_per_step']:.1f} µs | "
           f"**{fmt_s(s['s_per_simulated_s'])}** | {fmt_s(old['s_per_simulated_s']) if old else '–'} | "
-          f"{f['iterations_per_solve']:.1f} | {s['iterations_per_solve']:.1f} | "
+          f"{f['points_per_solve']:.0f} | {s['points_per_solve']:.0f} | "
           f"{m['max_overlap_state_m'] * 1e3:.2f} mm | {m['max_overlap_rest_m'] * 1e3:.2f} mm | "
           f"{m['max_speed_1s_mps']:.3g} m/s | {m['max_speed_3s_mps']:.3g} m/s | {m['asleep_3s']:.0f} of {n} |")
-    w("\nWhere the falling second's solves go: *points* is the contact points a solve answers, "
-      "*point solves* the points its passes solved (a settled point whose bodies nothing moved "
-      "is skipped), and their ratio the passes an average point took. The points grow as N; "
-      "a pile whose columns have settled takes one pass, one still settling takes them to the "
-      "tolerance or the cap (60 passes). *At the cap*: the steps whose passes ran to the cap "
-      "(an island still settling), the points those steps answered and the passes each took. "
-      "Nearly all of the second's work is in them. From 100 to 1000 cubes the passes per point "
-      "there hardly grow (the cap binds both piles); what grows faster than N is how many steps "
-      "a pile spends there: the columns of 10 of the pile of 1000 land later (the last cube at "
-      "about 0.33 s, against 0.2 s) and settle later than the columns of 4.\n")
-    w("| N | points per solve, falling | point solves per solve, falling | passes per point, falling | "
-      "steps at the cap, of the second's | points per step at the cap | passes per point at the cap | "
-      "share of the point solves at the cap |")
-    w("|---:|---:|---:|---:|---:|---:|---:|---:|")
-    for n, m in manifold.items():
-        f = m["fall"]
-        points, solved = f["points_per_solve"], f["point_solves_per_solve"]
-        capped, at_cap, solved_at_cap = f["steps_at_cap"], f["points_at_cap"], f["point_solves_at_cap"]
-        w(f"| {n} | {points:.0f} | {solved:.0f} | {solved / points if points > 0 else math.nan:.1f} | "
-          f"{capped:.0f} of {f['steps']:.0f} | {at_cap / capped if capped > 0 else math.nan:.0f} | "
-          f"{solved_at_cap / at_cap if at_cap > 0 else math.nan:.1f} | "
-          f"{pct(solved_at_cap / (solved * f['solves_per_step'] * f['steps'])) if solved > 0 else '–'} |")
-    work = fall_work(manifold)
+    work = fall_work(windows)
     steps = [f"{a} → {b} cubes {work[b] / work[a]:.1f}x, slope {measured:.2f} (N log N: {limit:.2f})"
              for a, b, measured, limit in growth(work)]
     if steps:
-        w("\nGrowth of the points solved per solve while the piles fall (the same solves in every "
-          "run, so without the timings' noise): " + "; ".join(steps) + ".")
-        parts = []
-        for a, b, _, _ in growth(work):
-            fa, fb = (pile_entry(manifold, x)["fall"] for x in (a, b))
-            if min(fa["steps_at_cap"], fb["steps_at_cap"], fa["points_at_cap"], fb["points_at_cap"]) > 0:
-                per_step = [f["points_at_cap"] / f["steps_at_cap"] for f in (fa, fb)]
-                passes = [f["point_solves_at_cap"] / f["points_at_cap"] for f in (fa, fb)]
-                parts.append(f"{a} → {b} cubes: steps at the cap {fb['steps_at_cap'] / fa['steps_at_cap']:.2f}x, "
-                             f"points per step there {per_step[1] / per_step[0]:.2f}x, passes per point "
-                             f"there {passes[1] / passes[0]:.2f}x")
-        if parts:
-            w("\nThat growth, taken apart at the cap (the three multiply to nearly all of it): "
-              + "; ".join(parts) + ".")
+        w("\nGrowth of the points per solve while the piles fall (the solver's work, the same solves "
+          "in every run, so without the timings' noise): " + "; ".join(steps) + ".")
     tilts = []
-    for tilt, piles in (r.get("manifold_tilts") or {}).items():
-        solved = fall_work(piles)
+    for tilt, tilted in (r.get("windows_tilts") or {}).items():
+        solved = fall_work(tilted)
         tilts += [f"({tilt.replace(',', ', ')}) {solved[b] / solved[a]:.1f}x from {a} to {b} cubes"
                   for a, b, _, _ in growth(solved)]
     if tilts:
         w("\nThe same growth with the cubes tilted by other patterns (`scripts/bench_scenes.py DIR "
           f"--tilt A,B`; the benchmark's is {bench_scenes.TILT[0]}, {bench_scenes.TILT[1]}), as a fall "
           "is chaotic: " + "; ".join(tilts) + ".")
-    incomplete = [n for n, m in manifold.items() if m["steps_ok"] < m["steps"]]
+    incomplete = [n for n, m in windows.items() if m["steps_ok"] < m["steps"]]
     if incomplete:
-        w(f"\nA step failed in the manifold piles of {incomplete}: their windows cover the steps before it.")
+        w(f"\nA step failed in the piles of {incomplete}: their windows cover the steps before it.")
     w("")
-    awake = r.get("manifold_awake") or {}
+    awake = r.get("windows_awake") or {}
     if awake:
         w("**Sleep off** (`BM_PileAwake/<N>`: the same runs with `\"solver\": {\"sleep\": false}`, once "
           "each): the solver alone, every body awake to the end. Islands sleep by default "
@@ -926,38 +884,37 @@ def write_manifold_section(w, r):
           "0.5 s, in an island resting on a surface, sleeps until something touches or drives "
           "it; the table above is the default.\n")
         w("| N | falling: per simulated second | at rest: per step | at rest: per simulated second | "
-          "iterations per solve, at rest | max overlap, 0–3 s | fastest body at 3 s |")
+          "points per solve, at rest | max overlap, 0–3 s | fastest body at 3 s |")
         w("|---:|---:|---:|---:|---:|---:|---:|")
         for n, a in awake.items():
             w(f"| {n} | {fmt_s(a['fall']['s_per_simulated_s'])} | {a['rest']['us_per_step']:.1f} µs | "
-              f"**{fmt_s(a['rest']['s_per_simulated_s'])}** | {a['rest']['iterations_per_solve']:.1f} | "
+              f"**{fmt_s(a['rest']['s_per_simulated_s'])}** | {a['rest']['points_per_solve']:.0f} | "
               f"{a['max_overlap_state_m'] * 1e3:.2f} mm | {a['max_speed_3s_mps']:.3g} m/s |")
         w("")
-    wide = r.get("manifold_wide") or {}
-    if wide and 100 in manifold:
+    wide = r.get("windows_wide") or {}
+    if wide and 100 in windows:
         w(f"**Equal height** (`BM_PileWide/<N>`, `pile_wide_<N>.json`: the same cubes, floor, step and "
           f"solver in {bench_scenes.WIDE_LAYERS}-cube columns, as in the pile of 100, on a wider grid; "
           "the medians of 3 runs). The cube-root piles grow taller with N (columns of 4 at 100, of 10 at "
-          "1000), and a taller column needs more Gauss-Seidel passes to carry its load down; this pile "
+          "1000), and a taller column's top cube lands harder and later and settles later; this pile "
           "grows N alone. Its growth targets are in the table above.\n")
         w("| N | columns | falling: per step | falling: per simulated second | at rest: per step | "
-          "at rest: per simulated second | iterations per solve, falling | iterations per solve, at rest "
+          "at rest: per simulated second | points per solve, falling | points per solve, at rest "
           "| max overlap, 0–3 s | fastest body at 3 s | asleep at 3 s |")
         w("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
         side = {n: round(math.sqrt(n / bench_scenes.WIDE_LAYERS)) for n in (100, *wide)}
-        for n, m, name in [(100, manifold[100], "pile_manifold_100"), *((k, v, f"pile_wide_{k}")
-                                                                        for k, v in wide.items())]:
+        for n, m, name in [(100, windows[100], "pile_100"), *((k, v, f"pile_wide_{k}") for k, v in wide.items())]:
             f, s = m["fall"], m["rest"]
             w(f"| {n} (`{name}`) | {side[n]} x {side[n]} of {bench_scenes.WIDE_LAYERS} | "
               f"{f['us_per_step']:.1f} µs | {fmt_s(f['s_per_simulated_s'])} | {s['us_per_step']:.1f} µs | "
-              f"**{fmt_s(s['s_per_simulated_s'])}** | {f['iterations_per_solve']:.1f} | "
-              f"{s['iterations_per_solve']:.1f} | {m['max_overlap_state_m'] * 1e3:.2f} mm | "
+              f"**{fmt_s(s['s_per_simulated_s'])}** | {f['points_per_solve']:.0f} | "
+              f"{s['points_per_solve']:.0f} | {m['max_overlap_state_m'] * 1e3:.2f} mm | "
               f"{m['max_speed_3s_mps']:.3g} m/s | {m['asleep_3s']:.0f} of {n} |")
         w("")
     w("Where a step goes (shares of the steps' wall time):\n")
     w("| N | window | " + " | ".join(STAGES) + " | other |")
     w("|---:|---|" + "---:|" * (len(STAGES) + 1))
-    for n, m in manifold.items():
+    for n, m in windows.items():
         for wnd, name in (("fall", "falling, 0–1 s"), ("rest", "at rest, 2–3 s")):
             sh = m[wnd]["shares"]
             w(f"| {n} | {name} | " + " | ".join(pct(sh[k]) for k in STAGES + ("other",)) + " |")
@@ -972,12 +929,12 @@ def write_manifold_section(w, r):
           "each repeat from its state at 2 s (warm start included). Its penetration is the deepest "
           "`-contact.dist` over the 3 s. The ratio is ours at rest over theirs at rest, from the "
           "separate runs (the target is judged on the interleaved rounds below).\n")
-    w("| N | MuJoCo per simulated second, falling | MuJoCo at rest | ours (manifold), falling | ours at "
+    w("| N | MuJoCo per simulated second, falling | MuJoCo at rest | ours, falling | ours at "
       "rest | ratio at rest, ours/theirs | MuJoCo fastest body at 3 s | our fastest body at 3 s | "
       "MuJoCo max penetration, 0–3 s | our max overlap, 0–3 s |")
     w("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     nm = "not measured"
-    for n, m in manifold.items():
+    for n, m in windows.items():
         p = mj.get(n)
         rest = p.get("rest_s_per_simulated_s") if p else None
         w(f"| {n} | {fmt_s(p['s_per_simulated_s']) if p else nm} | {fmt_s(rest) if rest else nm} | "
@@ -989,7 +946,7 @@ def write_manifold_section(w, r):
           f"{m['max_overlap_state_m'] * 1e3:.2f} mm |")
     w("")
     if il:
-        w(f"**Interleaved, manifold pile of {il['n']} at rest.** Ours once (the whole 3 s run, "
+        w(f"**Interleaved, pile of {il['n']} at rest.** Ours once (the whole 3 s run, "
           "its third second timed), then MuJoCo's third second once, each in its own process, "
           "round by round; our figures for this pile above are the medians over these rounds. "
           f"Median ratio: **{il['ratio']:.2f}**" +
@@ -1047,12 +1004,12 @@ def main(argv=None, prog=None):
         log("== a pile, ours and MuJoCo's interleaved")
         interleaved = interleaved_pile_ratio(build, scenes, folder, 100 if args.quick else 1000,
                                              1 if args.quick else 3)
-        log("== the manifold contact solver's piles (rigid-bench-core BM_PileManifold)")
-        manifold, manifold_il, manifold_awake = run_manifold(build, scenes, folder, args.quick)
+        log("== the piles over 3 s, falling and at rest (rigid-bench-core BM_PileWindows, BM_PileAwake)")
+        windows, windows_il, windows_awake = run_windows(build, scenes, folder, args.quick)
         log("== the wide pile, columns as short as the pile of 100's (BM_PileWide)")
-        manifold_wide = run_wide(build, scenes, args.quick)
-        log("== the falling piles under other tilt patterns (BM_PileManifold)")
-        manifold_tilts = run_tilts(build, folder, args.quick)
+        windows_wide = run_wide(build, scenes, args.quick)
+        log("== the falling piles under other tilt patterns (BM_PileWindows)")
+        windows_tilts = run_tilts(build, folder, args.quick)
     if peers is None:
         log("MuJoCo: not measured (no .venv-peers; scripts/bench.sh without --quick creates it)")
     accuracy = {"T": T, "omega0": [float(x) for x in omega0], "ours": ours, "mujoco": [], "equal_accuracy": []}
@@ -1062,28 +1019,28 @@ def main(argv=None, prog=None):
         accuracy["equal_accuracy"] = equal_accuracy(ours, [m for m in peers["free_one"] if m["integrator"] == "RK4"])
 
     rows = targets(free, piles, peers, interleaved)
-    mrows = manifold_targets(manifold, peers, manifold_il) + equal_height_targets(manifold, manifold_wide)
-    mchecks = manifold_checks(manifold, manifold_il, manifold_awake)
+    wrows = windows_targets(windows, peers, windows_il) + equal_height_targets(windows, windows_wide)
+    wchecks = windows_checks(windows, windows_il, windows_awake)
     meta = {"quick": args.quick, "date": time.strftime("%Y-%m-%d %H:%M %Z"), "cpu": cpu_name(),
             "python": f"Python {platform.python_version()}", "repeats": repeats,
             "benchmark_library": f"1.7 ({context.get('library_build_type', '?')} build, Debian)",
             "load_avg": context.get("load_avg"), "source": source_state(),
             "seconds": time.perf_counter() - t_start}
     report = {"free": free, "piles": piles, "fmu": fmu, "peers": peers, "interleaved": interleaved,
-              "manifold": manifold, "manifold_interleaved": manifold_il, "manifold_targets": mrows,
-              "manifold_checks": mchecks,
-              "manifold_awake": manifold_awake, "manifold_wide": manifold_wide, "manifold_tilts": manifold_tilts,
+              "windows": windows, "windows_interleaved": windows_il, "windows_targets": wrows,
+              "windows_checks": wchecks,
+              "windows_awake": windows_awake, "windows_wide": windows_wide, "windows_tilts": windows_tilts,
               "accuracy": accuracy, "targets": rows, "meta": meta}
     fig_dir = out / "performance"
-    files = plots(fig_dir, free, piles, peers, manifold)
+    files = plots(fig_dir, free, piles, peers, windows)
     (fig_dir / "bench.json").write_text(json.dumps(report, indent=1, default=float))
     write_markdown(out / "performance.md", report)
 
     log("\n== targets (figures, never asserted)")
-    for label, value, status in rows + mrows:
+    for label, value, status in rows + wrows:
         log(f"  {status:5s} {label}: {value}")
     log("== checks beside them (figures, not targets)")
-    for label, value, status in mchecks:
+    for label, value, status in wchecks:
         log(f"  {status:5s} {label}: {value}")
     if peers:
         mj = {m["n"]: m for m in peers["piles"] if m["integrator"] == "Euler"}
@@ -1096,24 +1053,24 @@ def main(argv=None, prog=None):
             log(f"  free body vs MuJoCo RK4 dt {m['dt']:g} ({m['error_rad']:.2g} rad): " +
                 (f"ours rk4 h {e['ours']['dt']:g} ({e['ours']['error_rad']:.2g} rad), ratio {e['ratio']:.3f}"
                  if e["ours"] else "no run of ours as accurate"))
-    log("\n== manifold solver's piles (BM_PileManifold; falling 0-1 s, at rest 2-3 s)")
+    log("\n== piles over 3 s (BM_PileWindows; falling 0-1 s, at rest 2-3 s)")
     mj_piles = {m["n"]: m for m in (peers or {}).get("piles", []) if m["integrator"] == "Euler"}
-    for n, m in manifold.items():
+    for n, m in windows.items():
         f, s = m["fall"], m["rest"]
         p = mj_piles.get(n, {})
         log(f"  pile {n}: per simulated second falling {fmt_s(f['s_per_simulated_s'])}, at rest "
             f"{fmt_s(s['s_per_simulated_s'])} (MuJoCo Euler at rest: "
             f"{fmt_s(p['rest_s_per_simulated_s']) if 'rest_s_per_simulated_s' in p else 'not measured'}); "
-            f"iterations per solve {f['iterations_per_solve']:.1f} falling, {s['iterations_per_solve']:.1f} "
+            f"points per solve {f['points_per_solve']:.0f} falling, {s['points_per_solve']:.0f} "
             f"at rest; fastest body at 3 s {m['max_speed_3s_mps']:.3g} m/s (MuJoCo: "
             f"{'%.3g m/s' % p['max_speed_3s'] if 'max_speed_3s' in p else 'not measured'}); overlap "
             f"{m['max_overlap_state_m'] * 1e3:.2f} mm (0-3 s), {m['max_overlap_rest_m'] * 1e3:.2f} mm at rest")
         for wnd, name in (("fall", "falling"), ("rest", "at rest")):
             log(f"    shares {name}: " + ", ".join(f"{k} {pct(m[wnd]['shares'][k])}"
                                                     for k in STAGES + ("other",)))
-    if manifold_il:
-        log(f"  manifold pile {manifold_il['n']} at rest: ours/MuJoCo Euler at rest = {manifold_il['ratio']:.2f} "
-            f"(median of {len(manifold_il['rounds'])} interleaved rounds)")
+    if windows_il:
+        log(f"  pile {windows_il['n']} at rest: ours/MuJoCo Euler at rest = {windows_il['ratio']:.2f} "
+            f"(median of {len(windows_il['rounds'])} interleaved rounds)")
     if peers is None:
         log("  MuJoCo: not measured (no .venv-peers): its columns say \"not measured\"")
     log(f"wrote {out / 'performance.md'}, {', '.join(str(f) for f in files)} "

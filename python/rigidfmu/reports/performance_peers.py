@@ -8,8 +8,8 @@ the peers' own venv (.venv-peers, made by scripts/peers_venv.sh) and read back a
   runs between steps), and, in a separate untimed run of 3 s, the deepest penetration
   (max over the first second's steps and contacts of -contact.dist; over all 3 s too)
   and the fastest body's speed at 1 s and at 3 s. With Euler, also the CPU time of the
-  third second (from the state at 2 s, at rest), beside our manifold solver's pile at
-  rest (bench_core.cpp's BM_PileManifold times the same window).
+  third second (from the state at 2 s, at rest), beside our pile at rest
+  (bench_core.cpp's BM_PileWindows times the same window).
 - Free bodies: the free_<N>.json bodies (inertia diag(1, 2, 3), no gravity) with RK4 at
   the scene's step, CPU time per step for N = 1 .. 1000; and the first body alone with
   RK4 (and Euler) at the given steps for T seconds, its final orientation returned so

@@ -1,14 +1,14 @@
 """The benchmark scenes, written once as scene files so that our core benchmark
-(bench/bench_core.cpp), the FMU benchmark and MuJoCo (rigidfmu.reports.bench_peers) run the
-very same bodies: free tumbling bodies, and piles of cubes falling on a floor. The
-piles are written twice, the second naming the contact solver ("manifold", the
-default), for the benchmarks that time them over 1 s (BM_Pile) and 3 s
-(BM_PileManifold). A third, wide pile (BM_PileWide) has as many cubes as the largest
-but in columns as short as the pile of 100's, so that the growth from 100 cubes can be
-read at equal height as well as at the growing height of the cube-root piles.
+(bench/bench_core.cpp), the FMU benchmark and MuJoCo (rigidfmu.reports.performance_peers)
+run the very same bodies: free tumbling bodies, and piles of cubes falling on a floor.
+One pile file per count serves the benchmarks that time it over 1 s (BM_Pile) and over
+3 s with its falling and resting windows (BM_PileWindows, BM_PileAwake), and MuJoCo. A
+wide pile (BM_PileWide) has as many cubes as the largest but in columns as short as the
+pile of 100's, so that the growth from 100 cubes can be read at equal height as well as
+at the growing height of the cube-root piles. No scene names a contact solver: there is
+one (the constraint solver).
 
-  python -m rigidfmu.scenes.bench DIR    writes DIR/free_<N>.json, DIR/pile_<N>.json,
-                                         DIR/pile_manifold_<N>.json and
+  python -m rigidfmu.scenes.bench DIR    writes DIR/free_<N>.json, DIR/pile_<N>.json and
                                          DIR/pile_wide_<N>.json
   python -m rigidfmu.scenes.bench DIR --tilt A,B
                                          the same with the piles' cubes tilted by another
@@ -82,30 +82,11 @@ def pile_scene(n, layers=None, tilt=TILT):
     return scene(f"Pile{n}", bodies, step=PILE_STEP, surfaces=[floor(0.6, 0.6, 0.0, half=5.0)])
 
 
-def pile_manifold_scene(n, tilt=TILT):
-    """pile_scene(n) answered by the manifold contact solver (solver.contacts): only the
-    solver differs, so the two piles' figures compare the solvers and nothing else."""
-    scene = pile_scene(n, tilt=tilt)
-    scene["name"] = f"PileManifold{n}"
-    scene["solver"] = dict(scene["solver"], contacts="manifold")
-    return scene
-
-
-def pile_substep_scene(n, tilt=TILT):
-    """pile_manifold_scene(n) answered by the constraint solver on trial (solver.contacts
-    "substep", docs/decisions/0001-constraint-solver.md): only the solver differs."""
-    scene = pile_scene(n, tilt=tilt)
-    scene["name"] = f"PileSubstep{n}"
-    scene["solver"] = dict(scene["solver"], contacts="substep")
-    return scene
-
-
 def pile_wide_scene(n, tilt=TILT):
-    """pile_manifold_scene(n) laid out in columns of WIDE_LAYERS cubes (the pile of
-    100's height): the same cubes, floor, step and solver, only the layout differs."""
+    """pile_scene(n) laid out in columns of WIDE_LAYERS cubes (the pile of 100's
+    height): the same cubes, floor, step and solver, only the layout differs."""
     scene = pile_scene(n, layers=WIDE_LAYERS, tilt=tilt)
     scene["name"] = f"PileWide{n}"
-    scene["solver"] = dict(scene["solver"], contacts="manifold")
     return scene
 
 
@@ -116,8 +97,6 @@ def write(directory, tilt=TILT):
         (d / f"free_{n}.json").write_text(json.dumps(free_scene(n)))
     for n in PILE_COUNTS:
         (d / f"pile_{n}.json").write_text(json.dumps(pile_scene(n, tilt=tilt)))
-        (d / f"pile_manifold_{n}.json").write_text(json.dumps(pile_manifold_scene(n, tilt)))
-        (d / f"pile_substep_{n}.json").write_text(json.dumps(pile_substep_scene(n, tilt)))
     (d / f"pile_wide_{WIDE_PILE}.json").write_text(json.dumps(pile_wide_scene(WIDE_PILE, tilt)))
 
 

@@ -315,7 +315,7 @@ fmi2Status Instance::discardStep(fmi2Real tc, const Interval& run) {
   time_ = lastSuccessfulTime_ = tc + run.from;
   state_ = kStepFailed;
   wantsToTerminate_ = true;
-  const std::string hint = r.body >= 0 && r.cause.empty()
+  const std::string hint = r.body >= 0 && r.cause == rigid::StepCause::None
                                ? " (inputs or parameters out of range, e.g. " + model_.bodies[r.body].name + ".force)"
                                : "";
   log(fmi2Discard, "logStatusDiscard",
@@ -326,7 +326,7 @@ fmi2Status Instance::discardStep(fmi2Real tc, const Interval& run) {
 }
 
 std::string Instance::stepFailure(const rigid::StepResult& r, double internalStep) const {
-  if (r.cause == rigid::kEnergyGain)
+  if (r.cause == rigid::StepCause::EnergyGain)
     return "body " + model_.bodies[r.body].name + ", turning free of torques, has gained " + num(r.energyGain) +
            " of its rotational energy, beyond solver.energyGainLimit = " + num(model_.energyGainLimit) + ": method " +
            rigid::methodName(model_.method) +
@@ -334,16 +334,16 @@ std::string Instance::stepFailure(const rigid::StepResult& r, double internalSte
            "splitting, symplecticEuler, rk4 or lieRk4 keep it, or a solver.step of " +
            num(r.stableStep) + " s would have kept it within half the limit so far;";
   if (r.body >= 0) return "the state of body " + model_.bodies[r.body].name + " is not finite or beyond 1e12 m";
-  if (r.cause == "fast body")
+  if (r.cause == rigid::StepCause::FastBody)
     return "a body moves so fast that the internal step of " + num(internalStep) +
            " s would need more than 1e4 collision sub-steps; a solver.step of " + num(r.stableStep) + " s would work";
-  if (r.cause.empty())
+  if (r.cause == rigid::StepCause::None)
     return "the adaptive method could not meet solver.tolerance = " + num(model_.tolerance) +
            " (its step fell below 1e-14 of the step; raise the tolerance)";
   // An explicit method outside its stability region: sub-stepping would need too many
   // steps, or (a stableStep of 0) no step is small enough.
-  const std::string unstable =
-      std::string("method ") + rigid::methodName(model_.method) + " is outside its stability region (" + r.cause + ")";
+  const std::string unstable = std::string("method ") + rigid::methodName(model_.method) +
+                               " is outside its stability region (" + rigid::causeName(r.cause) + ")";
   if (r.stableStep > 0.0)
     return unstable + ": the internal step of " + num(internalStep) +
            " s would need more than 1e6 sub-steps; a solver.step of " + num(r.stableStep) +
@@ -597,12 +597,14 @@ fmi2Status Instance::getOutputDerivatives(const fmi2ValueReference vr[], size_t 
 }
 
 void Instance::noteSubsteps(const rigid::StepResult& r, double h) {
-  const std::string note = r.substeps > 1 ? r.cause + ":" + std::to_string(r.substeps) : std::string();
+  const std::string note =
+      r.substeps > 1 ? std::string(rigid::causeName(r.cause)) + ":" + std::to_string(r.substeps) : std::string();
   if (note == substepNote_) return;
   substepNote_ = note;
-  const std::string why = r.cause == "fast body" ? std::string("a fast body could pass through what it can hit")
-                                                 : std::string("method ") + rigid::methodName(model_.method) +
-                                                       " is outside its stability region (" + r.cause + ")";
+  const std::string why = r.cause == rigid::StepCause::FastBody
+                              ? std::string("a fast body could pass through what it can hit")
+                              : std::string("method ") + rigid::methodName(model_.method) +
+                                    " is outside its stability region (" + rigid::causeName(r.cause) + ")";
   if (r.substeps > 1)
     log(fmi2Warning, "logStatusWarning",
         std::string(called("fmi2DoStep")) + ": " + why + " at the internal step of " + num(h) + " s; sub-stepping it " +

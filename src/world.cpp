@@ -253,7 +253,7 @@ StepResult auditRotationalEnergy(const WorldModel& model, WorldData& data, const
       const double gain = a.carried[i] * data.aux[i].omega.dot(data.Y[i].L) / a.reference[i] - 1.0;
       if (gain > model.energyGainLimit) {
         StepResult r = failed(static_cast<int>(i));
-        r.cause = kEnergyGain;
+        r.cause = StepCause::EnergyGain;
         r.energyGain = gain;
         r.stableStep = h * 0.5 * model.energyGainLimit / gain;
         return r;
@@ -465,7 +465,7 @@ bool bouncyWorld(const WorldModel& model) {
 // stable step and sub-step count.
 void stabilitySubsteps(const WorldModel& model, const WorldData& data, double h, StepResult& r) {
   const StabilityLimits limits = stabilityLimits(model.method);
-  auto consider = [&](double rate, double limit, const char* cause) {
+  auto consider = [&](double rate, double limit, StepCause cause) {
     if (!(rate > 0.0) || !std::isfinite(limit)) return;
     if (limit == 0.0) {  // no step is stable: refuse
       r.substeps = std::numeric_limits<long>::max();
@@ -486,19 +486,30 @@ void stabilitySubsteps(const WorldModel& model, const WorldData& data, double h,
   // the fastest spin sets the sub-steps: one square root, not one per body
   double spin2 = 0.0;
   for (const BodyAux& aux : data.aux) spin2 = std::max(spin2, aux.omega.squaredNorm());
-  consider(std::sqrt(spin2), limits.spin, "spin");
+  consider(std::sqrt(spin2), limits.spin, StepCause::Spin);
   if constexpr (modules::kMedia) {
     for (size_t i = 0; i < data.Y.size(); ++i) {
       for (const Medium& medium : model.media) {
         const MediumRates rates = mediumRates(medium, model.bodies[i], data.Y[i], data.aux[i], model.gravity);
-        consider(rates.damping, limits.damping, "drag");
-        consider(rates.oscillation, limits.oscillation, "buoyancy heave");
+        consider(rates.damping, limits.damping, StepCause::Drag);
+        consider(rates.oscillation, limits.oscillation, StepCause::BuoyancyHeave);
       }
     }
   }
 }
 
 }  // namespace
+
+const char* causeName(StepCause cause) {
+  switch (cause) {
+    case StepCause::Spin: return "spin";
+    case StepCause::Drag: return "drag";
+    case StepCause::BuoyancyHeave: return "buoyancy heave";
+    case StepCause::FastBody: return "fast body";
+    case StepCause::EnergyGain: return "rotational energy gain";
+    default: return "";
+  }
+}
 
 StepResult step(const WorldModel& model, WorldData& data, double h, bool stopAtImpact) {
   // More than this many sub-steps in one step is refused: the step should be smaller.
@@ -510,10 +521,10 @@ StepResult step(const WorldModel& model, WorldData& data, double h, bool stopAtI
   const long fast = collisionSubsteps(model, data, h);
   if (fast > plan.substeps) {
     plan.substeps = fast;
-    plan.cause = "fast body";
+    plan.cause = StepCause::FastBody;
     plan.stableStep = h / fast;
   }
-  if (plan.substeps > (plan.cause == "fast body" ? kMaxFastSubsteps : kMaxSubsteps)) {
+  if (plan.substeps > (plan.cause == StepCause::FastBody ? kMaxFastSubsteps : kMaxSubsteps)) {
     plan.ok = false;
     return plan;
   }

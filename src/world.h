@@ -106,24 +106,28 @@ void clearContactLoads(WorldData& data);
 // limits). I(t)^-1 is left out: only contacts use it, and they form their own.
 void refreshAuxiliaries(const WorldModel& model, WorldData& data);
 
+// Why a step was split into sub-steps or refused: an explicit method outside its
+// stability region (its spin, drag or buoyancy heave rate), a fast body that could pass
+// through what it can hit, or a torque-free body's rotational energy grown beyond
+// WorldModel::energyGainLimit.
+enum class StepCause { None, Spin, Drag, BuoyancyHeave, FastBody, EnergyGain };
+
+// The cause in words: "spin", "drag", "buoyancy heave", "fast body",
+// "rotational energy gain" ("" for None).
+const char* causeName(StepCause cause);
+
 struct StepResult {
   bool ok = true;
-  int body = -1;  // when !ok: first body whose new state is not finite, or -1 when the
-                  // adaptive method could not meet its tolerance or sub-steps would not do
-  // Sub-steps the step was split into, and why: an explicit method outside its
-  // stability region ("spin", "drag", "buoyancy heave") or a fast body ("fast body").
-  long substeps = 1;
-  std::string cause;
+  int body = -1;      // when !ok: first body whose new state is not finite, or -1 when the
+                      // adaptive method could not meet its tolerance or sub-steps would not do
+  long substeps = 1;  // the sub-steps the step was split into, for `cause`
+  StepCause cause = StepCause::None;
   double stableStep = 0.0;  // s, the largest step that cause allows (when cause is set)
-  double energyGain = 0.0;  // when cause is kEnergyGain: the body's relative gain it would reach
+  double energyGain = 0.0;  // when cause is EnergyGain: the body's relative gain it would reach
   // With stopAtImpact: s into the step at which a bouncing impact was located and
   // answered, the step ending there; < 0 when the step ran to its end.
   double impactAt = -1.0;
 };
-
-// StepResult::cause of a step refused because a torque-free body's rotational energy
-// would grow beyond WorldModel::energyGainLimit.
-inline constexpr const char* kEnergyGain = "rotational energy gain";
 
 // Advances the world by one internal step h (s). On a non-finite result the step is
 // not taken: Y stays as it was and the result names the body. With stopAtImpact, the

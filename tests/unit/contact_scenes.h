@@ -79,7 +79,7 @@ struct Sim {
     const long steps = std::lround(seconds / model.maxStep);
     for (long k = 0; k < steps; ++k) {
       const rigid::StepResult r = rigid::step(model, data, model.maxStep);
-      ASSERT_TRUE(r.ok) << "step " << k << " refused (body " << r.body << ", " << r.cause << ")";
+      ASSERT_TRUE(r.ok) << "step " << k << " refused (body " << r.body << ", " << rigid::causeName(r.cause) << ")";
       each();
     }
   }

@@ -49,11 +49,11 @@ TEST(World, EnergyAuditRefusesExplicitEulersGainOnAFreeRotation) {
       ASSERT_LE(twiceEnergy(data) / E0 - 1.0, limit * (1 + 1e-9)) << "step " << n;
     }
     if (method != rigid::Method::Euler) {
-      EXPECT_EQ(n, 10000) << r.cause;
+      EXPECT_EQ(n, 10000) << rigid::causeName(r.cause);
       continue;
     }
     ASSERT_LT(n, 10000) << "explicit Euler was expected to gain energy";
-    EXPECT_EQ(r.cause, rigid::kEnergyGain);
+    EXPECT_EQ(r.cause, rigid::StepCause::EnergyGain);
     EXPECT_EQ(r.body, 0);
     EXPECT_GT(r.energyGain, limit);
     EXPECT_GT(r.stableStep, 0.0);

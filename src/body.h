@@ -40,6 +40,7 @@ struct BodyConstants {
   double restitution = 0.5;                // xi, 1
   double staticFriction = 0.6;             // mu_s, 1
   double kineticFriction = 0.4;            // mu_k, 1
+  double rollingResistance = 0.0;          // m, the lever of the moment that resists rolling
   bool collides = true;                    // takes part in body-body collision detection
   std::vector<PointLoad> loads;            // points where input forces act
   BodyStart start;

@@ -503,8 +503,9 @@ Coefficients coefficientsOf(const WorldModel& model, const Contact& c) {
   const double xi = body ? model.bodies[c.b].restitution : model.surfaces[c.surface].restitution;
   const double mus = body ? model.bodies[c.b].staticFriction : model.surfaces[c.surface].staticFriction;
   const double muk = body ? model.bodies[c.b].kineticFriction : model.surfaces[c.surface].kineticFriction;
+  const double rolling = body ? model.bodies[c.b].rollingResistance : model.surfaces[c.surface].rollingResistance;
   return {combineCoefficients(a.restitution, xi), combineCoefficients(a.staticFriction, mus),
-          combineCoefficients(a.kineticFriction, muk)};
+          combineCoefficients(a.kineticFriction, muk), std::max(a.rollingResistance, rolling)};
 }
 
 struct CollisionDetector::Impl {

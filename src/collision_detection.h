@@ -35,9 +35,10 @@ struct Contact {
 };
 
 // A touching pair's restitution xi and friction mu_s, mu_k: each the combination of its
-// two partners' (contact_rules.h).
+// two partners' (contact_rules.h); and its rolling resistance, the larger of the two
+// partners' (m: rolling is resisted by a moment of at most rolling lambda_N).
 struct Coefficients {
-  double xi = 0.0, mus = 0.0, muk = 0.0;
+  double xi = 0.0, mus = 0.0, muk = 0.0, rolling = 0.0;
 };
 Coefficients coefficientsOf(const WorldModel& model, const Contact& c);
 

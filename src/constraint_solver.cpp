@@ -110,6 +110,11 @@ struct Manifold {
   bool sliding = false;                              // friction bounded by mu_k (else mu_s) for the whole step
   bool atLimit = false;                              // its friction on the edge of its bound after the last pass
   Vec3 lambda = Vec3::Zero(), total = Vec3::Zero();  // (t1, t2, twist) impulses, as the points'
+  // Rolling resistance (k.rolling > 0): the pair's relative turn about t1 and t2, its
+  // moment bounded by k.rolling lambda_N; it starts each step from none (not remembered)
+  Jacobian rolling[2];
+  Eigen::Matrix2d rollingMass = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d rollingLambda = Eigen::Vector2d::Zero();  // N m s
 };
 
 }  // namespace
@@ -175,6 +180,14 @@ void prepareFriction(Manifold& m, const Solver& s) {
     for (int y = 0; y < 3; ++y)
       if (m.radius > 0.0 || (x < 2 && y < 2)) K(x, y) = coupling(A, B, m.friction[x], m.friction[y]);
   m.frictionMass = K.inverse();
+  if (m.k.rolling > 0.0) {
+    m.rolling[0] = jacobian(A, B, Vec3::Zero(), m.t1, m.t1);
+    m.rolling[1] = jacobian(A, B, Vec3::Zero(), m.t2, m.t2);
+    Eigen::Matrix2d R;
+    for (int x = 0; x < 2; ++x)
+      for (int y = 0; y < 2; ++y) R(x, y) = coupling(A, B, m.rolling[x], m.rolling[y]);
+    m.rollingMass = R.inverse();
+  }
 }
 
 // How fast a contact point of Y approaches (m/s, > 0: closing).
@@ -371,6 +384,7 @@ void applyWarmStart(Solver& s) {
     Body& B = s.bodies[m.b];
     for (size_t k = m.first; k < m.first + m.count; ++k) applyImpulse(A, B, s.points[k].n, s.points[k].lambda);
     for (int x = 0; x < 3; ++x) applyImpulse(A, B, m.friction[x], m.lambda[x]);
+    for (int x = 0; x < 2; ++x) applyImpulse(A, B, m.rolling[x], m.rollingLambda[x]);
   }
 }
 
@@ -457,10 +471,28 @@ void solveFriction(Solver& s, Manifold& m) {
   m.lambda = lambda;
 }
 
+// Rolling resistance: the moment that stops the pair's relative turn about the
+// tangents, within the disc |moment| <= rolling lambda_N (a rolling sphere's speed then
+// falls at 5 rolling g / (7 R)).
+void solveRolling(Solver& s, Manifold& m) {
+  if (!(m.k.rolling > 0.0)) return;
+  Body& A = s.bodies[m.a];
+  Body& B = s.bodies[m.b];
+  double normal = 0.0;
+  for (size_t k = m.first; k < m.first + m.count; ++k) normal += s.points[k].lambda;
+  const Eigen::Vector2d turn(velocityAlong(A, B, m.rolling[0]), velocityAlong(A, B, m.rolling[1]));
+  Eigen::Vector2d lambda = m.rollingLambda - m.rollingMass * turn;
+  const double bound = m.k.rolling * normal, size = lambda.norm();
+  if (size > bound) lambda *= bound / size;
+  for (int x = 0; x < 2; ++x) applyImpulse(A, B, m.rolling[x], lambda[x] - m.rollingLambda[x]);
+  m.rollingLambda = lambda;
+}
+
 void solvePass(Solver& s, double hSub, bool useBias) {
   for (Manifold& m : s.manifolds) {
     solveNormals(s, m, hSub, useBias);
     solveFriction(s, m);
+    solveRolling(s, m);
   }
 }
 

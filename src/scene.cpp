@@ -214,10 +214,17 @@ std::vector<PointLoad> readLoads(const Object& body) {
   return loads;
 }
 
+// The lever (m) of the moment that resists rolling: finite, >= 0, default 0 (none).
+double rollingResistance(const Object& o) {
+  const double e = o.number("rollingResistance", 0.0);
+  if (!(e >= 0.0) || !std::isfinite(e)) fail(o.path("rollingResistance"), "must be >= 0 (m), got " + num(e));
+  return e;
+}
+
 BodyConstants readBody(const json& j, const std::string& path) {
   Object o(j, path,
            {"name", "shape", "mass", "inertia", "position", "orientation", "velocity", "angularVelocity", "restitution",
-            "staticFriction", "kineticFriction", "collision", "outputs", "inputs", "loads"});
+            "staticFriction", "kineticFriction", "rollingResistance", "collision", "outputs", "inputs", "loads"});
   BodyConstants b;
   b.name = identifier(o, "name");
   if (!o.has("shape")) fail(o.path("shape"), "is required");
@@ -230,6 +237,7 @@ BodyConstants readBody(const json& j, const std::string& path) {
   b.start.angularVelocity = o.vec3("angularVelocity", Vec3::Zero());
   b.restitution = inRange(o, "restitution", defaults::kRestitution, 0.0, 1.0);
   friction(o, b.staticFriction, b.kineticFriction);
+  b.rollingResistance = rollingResistance(o);
   b.collides = o.boolean("collision", true);
   b.loads = readLoads(o);
   return b;
@@ -267,13 +275,15 @@ std::set<std::string> nameList(const Object& o, const char* key, const std::vect
 
 Surface readSurface(const json& j, const std::string& path) {
   Object o(j, path,
-           {"name", "min", "max", "orientation", "staticFriction", "kineticFriction", "restitution", "outputs"});
+           {"name", "min", "max", "orientation", "staticFriction", "kineticFriction", "restitution",
+            "rollingResistance", "outputs"});
   Surface s;
   s.name = identifier(o, "name");
   readBox(o, s.min, s.max);
   s.orientation = unitQuaternion(o, "orientation");
   friction(o, s.staticFriction, s.kineticFriction);
   s.restitution = inRange(o, "restitution", defaults::kRestitution, 0.0, 1.0);
+  s.rollingResistance = rollingResistance(o);
   s.forceOutput = nameList(o, "outputs", {"force"}).count("force") > 0;
   finishSurface(s);
   return s;

@@ -16,6 +16,7 @@ struct Surface {
   double staticFriction = 0.6;          // mu_s, 1
   double kineticFriction = 0.4;         // mu_k, 1
   double restitution = 0.5;             // xi, 1
+  double rollingResistance = 0.0;       // m, the lever of the moment that resists rolling
   bool forceOutput = true;              // the FMU reports NAME.force (the scene's "outputs")
   // Derived by finishSurface():
   Vec3 centre = Vec3::Zero();      // m, world frame

@@ -120,6 +120,34 @@ TEST(ConstraintSolver, SphereSlippingOnAPlankKeepsThePairsHorizontalMomentum) {
   EXPECT_GT((sim.data.aux[0].V.head<2>()).norm(), 0.01);  // the plank was set moving
 }
 
+// A sphere rolling on the floor at v0 with rolling resistance e (its own; the floor's 0):
+// the resisting moment e m g slows it at a = 5 e g / (7 R) (friction at the contact
+// keeps it rolling), so it stops after v0^2 / (2 a) = 7 R v0^2 / (10 e g), at
+// t = v0 / a, within 0.1 %, and stays. Without it (e = 0) it rolls on: the
+// SphereAndCylinderRollOnALevelFloorWithoutLosingSpeed test.
+TEST(ConstraintSolver, RollingResistanceStopsARollingSphereAtTheClosedFormDistance) {
+  const double R = 0.1, v0 = 1.0, e = 0.002;
+  json ball = {{"name", "ball"},
+               {"shape", {{"type", "sphere"}, {"radius", R}}},
+               {"mass", 1.0},
+               {"position", {0, 0, R}},
+               {"velocity", {v0, 0, 0}},
+               {"angularVelocity", {0, v0 / R, 0}},
+               {"restitution", 0.0},
+               {"staticFriction", 0.6},
+               {"kineticFriction", 0.5},
+               {"rollingResistance", e}};
+  Sim sim(sceneOf(ball, floorSurface()));
+  const double a = 5.0 * e * kG / (7.0 * R), stopAt = v0 / a, distance = v0 * v0 / (2.0 * a);
+  sim.run(0.5 * stopAt);
+  EXPECT_NEAR(sim.data.aux[0].V.x(), 0.5 * v0, 0.01 * v0);
+  sim.run(0.5 * stopAt + 1.0);
+  std::printf("stopped after %.4f m; closed form %.4f m\n", sim.data.Y[0].X.x(), distance);
+  EXPECT_NEAR(sim.data.Y[0].X.x(), distance, 1e-3 * distance);
+  EXPECT_LT(sim.data.aux[0].V.norm(), 1e-6);
+  EXPECT_LT(sim.data.aux[0].omega.norm(), 1e-5);
+}
+
 // Two spinning boxes with friction meet obliquely in free space: linear momentum and
 // angular momentum about the origin are kept to rounding.
 TEST(ConstraintSolver, TwoBodiesCollidingInFreeSpaceKeepTheirMomenta) {

@@ -137,6 +137,16 @@ TEST(Scene, ChoosingAContactSolverIsRefused) {
                        "solver.contacts: was removed: every contact has one solver now, the constraint solver");
 }
 
+TEST(Scene, RollingResistanceIsALengthOfAtLeastZero) {
+  EXPECT_EQ(rigid::parseScene(sceneWith()).model.bodies[0].rollingResistance, 0.0);
+  EXPECT_EQ(rigid::parseScene(sceneWith(R"(, "rollingResistance": 0.002)")).model.bodies[0].rollingResistance, 0.002);
+  EXPECT_SCENE_ERROR(sceneWith(R"(, "rollingResistance": -1)"),
+                     "bodies[0].rollingResistance: must be >= 0 (m), got -1");
+  const std::string surface = R"("surfaces": [{"name": "floor", "min": [-5, -5, -1], "max": [5, 5, 0], )"
+                              R"("rollingResistance": 0.01}], )";
+  EXPECT_EQ(rigid::parseScene(sceneWith("", surface)).model.surfaces[0].rollingResistance, 0.01);
+}
+
 TEST(Scene, SleepRules) {
   const rigid::WorldModel fallback = rigid::parseScene(sceneWith("", "")).model;
   EXPECT_TRUE(fallback.sleep.enabled);

@@ -4,11 +4,13 @@
 //     ns_per_body_step is the time per step divided by N.
 //   BM_Pile/<N>: a pile of N cubes falling on a floor, 1 s of simulated time (500
 //     steps of 2 ms) per iteration from the same start; counters split the time into
-//     integration, broadphase, narrowphase and response (WorldData::profile) and give
+//     integration, broadphase, narrowphase and response (the solve), and into the
+//     step's stages (us_stage_<name>, world.h's Stage; WorldData::profile), and give
 //     the deepest penetration seen (m) and the fastest body's speed at the end (m/s).
 //   BM_PileWindows/<N>: the same pile (pile_<N>.json), 3 s of simulated time per
 //     iteration: the CPU time of the first second (falling) and of the third (at rest,
-//     after 2 s), each split into the stages' wall times with the constraint solver's
+//     after 2 s), each split into the phases' and the step stages' wall times
+//     (<window>_ns_stage_<name>, <window>_runs_stage_<name>) with the constraint solver's
 //     solves and the contact points they answered; the deepest overlap in the output
 //     state, the fastest body's speed at 1 s and 3 s, and the bodies asleep at 3 s
 //     (sleep.h; the scene's default rules).
@@ -37,6 +39,21 @@ namespace {
 std::string scenesDir;
 
 rigid::Scene load(const std::string& file) { return rigid::loadSceneFile(scenesDir + "/" + file); }
+
+double stageTime(const rigid::StepProfile& p, rigid::Stage stage) { return p.time[static_cast<int>(stage)]; }
+
+// What a profile gained from `before` to `after`, added to `sum`.
+void addProfile(rigid::StepProfile& sum, const rigid::StepProfile& before, const rigid::StepProfile& after) {
+  for (int k = 0; k < rigid::kStageCount; ++k) {
+    sum.time[k] += after.time[k] - before.time[k];
+    sum.runs[k] += after.runs[k] - before.runs[k];
+  }
+  sum.broadphase += after.broadphase - before.broadphase;
+  sum.narrowphase += after.narrowphase - before.narrowphase;
+  sum.steps += after.steps - before.steps;
+  sum.solves += after.solves - before.solves;
+  sum.points += after.points - before.points;
+}
 
 void freeBodies(benchmark::State& state, rigid::Method method, int n) {
   rigid::Scene scene = load("free_" + std::to_string(n) + ".json");
@@ -144,18 +161,16 @@ void pile(benchmark::State& state, int n) {
     // figure (scripts/bench_peers.py) is the same
     for (const rigid::BodyAux& a : data.aux) fastest = std::max(fastest, a.V.norm());
     state.ResumeTiming();
-    total.integration += data.profile.integration;
-    total.broadphase += data.profile.broadphase;
-    total.narrowphase += data.profile.narrowphase;
-    total.response += data.profile.response;
-    total.steps += data.profile.steps;
+    addProfile(total, rigid::StepProfile{}, data.profile);
   }
   const double runs = static_cast<double>(state.iterations());
   const double perStep = 1e-3 / (runs * steps);  // ns summed over runs -> us per step
-  state.counters["us_integration"] = total.integration * perStep;
+  state.counters["us_integration"] = stageTime(total, rigid::Stage::Integrate) * perStep;
   state.counters["us_broadphase"] = total.broadphase * perStep;
   state.counters["us_narrowphase"] = total.narrowphase * perStep;
-  state.counters["us_response"] = total.response * perStep;
+  state.counters["us_response"] = stageTime(total, rigid::Stage::Solve) * perStep;
+  for (int k = 0; k < rigid::kStageCount; ++k)
+    state.counters[std::string("us_stage_") + rigid::stageName(static_cast<rigid::Stage>(k))] = total.time[k] * perStep;
   state.counters["internal_steps"] = static_cast<double>(total.steps) / runs;
   state.counters["steps_ok"] = static_cast<double>(ok) / runs;
   state.counters["max_penetration_m"] = deepest;
@@ -183,12 +198,7 @@ struct Window {
   void add(double cpuSeconds, double wallNs, const rigid::StepProfile& before, const rigid::StepProfile& after) {
     cpu += cpuSeconds;
     wall += wallNs;
-    profile.integration += after.integration - before.integration;
-    profile.broadphase += after.broadphase - before.broadphase;
-    profile.narrowphase += after.narrowphase - before.narrowphase;
-    profile.response += after.response - before.response;
-    profile.solves += after.solves - before.solves;
-    profile.points += after.points - before.points;
+    addProfile(profile, before, after);
     ++steps;
   }
 };
@@ -200,10 +210,15 @@ void windowCounters(benchmark::State& state, const std::string& name, const Wind
   // rest of it
   state.counters[name + "_cpu_s"] = w.cpu / runs;
   state.counters[name + "_wall_ns"] = w.wall / runs;
-  state.counters[name + "_ns_integration"] = w.profile.integration / runs;
+  state.counters[name + "_ns_integration"] = stageTime(w.profile, rigid::Stage::Integrate) / runs;
   state.counters[name + "_ns_broadphase"] = w.profile.broadphase / runs;
   state.counters[name + "_ns_narrowphase"] = w.profile.narrowphase / runs;
-  state.counters[name + "_ns_response"] = w.profile.response / runs;
+  state.counters[name + "_ns_response"] = stageTime(w.profile, rigid::Stage::Solve) / runs;
+  for (int k = 0; k < rigid::kStageCount; ++k) {  // the step's stages (world.h), each with its runs
+    const std::string stage = rigid::stageName(static_cast<rigid::Stage>(k));
+    state.counters[name + "_ns_stage_" + stage] = w.profile.time[k] / runs;
+    state.counters[name + "_runs_stage_" + stage] = static_cast<double>(w.profile.runs[k]) / runs;
+  }
   state.counters[name + "_steps"] = static_cast<double>(w.steps) / runs;
   state.counters[name + "_solves"] = static_cast<double>(w.profile.solves) / runs;
   // the solver's work: its sub-steps and relax passes are fixed, so what a solve costs

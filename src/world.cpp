@@ -111,25 +111,31 @@ void refreshAuxiliaries(const WorldModel& model, WorldData& data) {
 
 namespace {
 
-// Adds the time of its scope to a StepProfile field, when there is one.
-class Stopwatch {
+// Adds the time of its scope to its stage's in the profile, when profiling and no other
+// stage is being timed (a stage run inside another is that one's).
+class StageTimer {
  public:
-  explicit Stopwatch(double* slot)
-      : slot_(slot), start_(slot ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{}) {}
-  ~Stopwatch() {
-    if (slot_) *slot_ += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start_).count();
+  StageTimer(WorldData& data, Stage stage)
+      : profile_(data.profiling && data.profile.running < 0 ? &data.profile : nullptr), stage_(stage) {
+    if (!profile_) return;
+    profile_->running = static_cast<int>(stage);
+    start_ = std::chrono::steady_clock::now();
   }
-  Stopwatch(const Stopwatch&) = delete;
-  Stopwatch& operator=(const Stopwatch&) = delete;
+  ~StageTimer() {
+    if (!profile_) return;
+    const int k = static_cast<int>(stage_);
+    profile_->time[k] += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start_).count();
+    ++profile_->runs[k];
+    profile_->running = -1;
+  }
+  StageTimer(const StageTimer&) = delete;
+  StageTimer& operator=(const StageTimer&) = delete;
 
  private:
-  double* slot_;
+  StepProfile* profile_;
+  Stage stage_;
   std::chrono::steady_clock::time_point start_;
 };
-
-double* slotOf(WorldData& data, double StepProfile::*field) {
-  return data.profiling ? &(data.profile.*field) : nullptr;
-}
 
 StepProfile* profileOf(WorldData& data) { return data.profiling ? &data.profile : nullptr; }
 
@@ -170,7 +176,7 @@ StepResult failed(int body) {
 // Returns the integrator's steps (0: the adaptive method failed its tolerance).
 // Sleeping bodies stay where they are.
 int advance(const WorldModel& model, WorldData& data, double tau, std::vector<BodyState>& next) {
-  Stopwatch integration(slotOf(data, &StepProfile::integration));
+  StageTimer timer(data, Stage::Integrate);
   const int steps = integrate(model, data, tau, next);
   normaliseOrientations(next);
   if constexpr (modules::kCollisions) holdSleepers(data.sleep, data.Y, next);
@@ -226,6 +232,7 @@ bool impactIn(StepContext& s, const std::vector<BodyState>& Y) {
 void addLoadsAndSleep(StepContext& s, double taken) {
   CollisionCache* c = s.data.collision.get();
   if (!c) return;
+  StageTimer timer(s.data, Stage::Sleep);
   WorldData::ContactLoads& loads = s.data.contactLoads;
   for (size_t i = 0; i < loads.impulse.size(); ++i) {
     loads.impulse[i] += c->stepImpulse[i];
@@ -355,7 +362,7 @@ double speculativeMargin(const StepContext& s, const std::vector<BodyState>& Y) 
 int moveBodies(StepContext& s, CollisionCache& c, double tau, std::vector<BodyState>& next) {
   const int steps = advance(s.model, s.data, tau, next);
   if (steps == 0) return 0;
-  Stopwatch response(slotOf(s.data, &StepProfile::response));
+  StageTimer timer(s.data, Stage::Solve);
   const SleepState& sleep = s.data.sleep;
   for (size_t i = 0; i < s.data.contacts.size(); ++i)
     if (!sleep.asleep[i]) s.data.contacts[i] = 0;  // a sleeping body keeps its count
@@ -388,6 +395,7 @@ double locateImpact(StepContext& s, CollisionCache& c, double tau, std::vector<B
 // The impact at which a step returns early (FMI 3), answered before it returns: the
 // impacts stage at the located instant, whose impulses join the contact loads.
 StepResult answerLocatedImpact(StepContext& s, CollisionCache& c) {
+  StageTimer timer(s.data, Stage::Impacts);
   detectContacts(s, s.data.Y, speculativeMargin(s, s.data.Y));
   std::vector<BodyState>& next = s.data.scratch.next;
   next = s.data.Y;
@@ -402,32 +410,52 @@ StepResult answerLocatedImpact(StepContext& s, CollisionCache& c) {
   return {};
 }
 
-// One internal step with contacts, as its stages: collide (the contacts of the step's
-// start, with the speculative margin), move (the integrator, then the constraint
-// solver), the instant of a bouncing impact when the step holds one (the step is then
-// split there), store, commit, loads and sleep.
+// The contacts of the step's start into the cache's stepContacts, with the speculative
+// margin (the cache's `contacts` then serve the impacts' probes); the sleeping bodies'
+// memory set aside.
+void collide(StepContext& s, CollisionCache& c) {
+  StageTimer timer(s.data, Stage::Collide);
+  detectContacts(s, s.data.Y, speculativeMargin(s, s.data.Y));
+  std::swap(c.contacts, c.stepContacts);
+  setAsideSleeping(s.data.sleep, s.data.contactMemory, c);
+}
+
+// How much of the rest of the step to take: all of it, or up to the instant of a
+// bouncing impact inside it (next then holds the state there).
+double impactInstant(StepContext& s, CollisionCache& c, double rest, std::vector<BodyState>& next) {
+  if (!s.bouncy || firstNonFinite(next) >= 0) return rest;
+  StageTimer timer(s.data, Stage::Impacts);
+  return impactIn(s, next) ? locateImpact(s, c, rest, next) : rest;
+}
+
+// The step's contacts and memory back in place, and next as the new state if it passes
+// the checks (commit).
+StepResult commitStep(StepContext& s, CollisionCache& c, int steps, std::vector<BodyState>& next) {
+  StageTimer timer(s.data, Stage::Commit);
+  std::swap(c.contacts, c.stepContacts);                           // the step's contacts, for sleep
+  if (steps > 0) std::swap(s.data.contactMemory, c.storedMemory);  // else no solve stored any
+  mergeBackSleeping(s.data.contactMemory, c);
+  if (steps == 0) return failed(-1);
+  if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);
+  c.stepImpulse = c.impulses.linear;
+  c.stepAngularImpulse = c.impulses.angular;
+  c.pushes = c.impulses.pushes;
+  return commit(s.model, s.data, next, s.h);
+}
+
+// One internal step with contacts, as its stages: collide, integrate and solve
+// (moveBodies), impacts (the step is split at a bouncing impact inside it), commit, and
+// sleep; again from the impact for the rest of the step.
 StepResult stepWithContacts(StepContext& s, CollisionCache& c) {
   std::vector<BodyState>& next = s.data.scratch.next;
   constexpr int kMaxImpactsPerStep = 16;
   double done = 0.0;
   for (int impacts = 0;; ++impacts) {
     const double rest = s.h - done;
-    detectContacts(s, s.data.Y, speculativeMargin(s, s.data.Y));
-    std::swap(c.contacts, c.stepContacts);
-    setAsideSleeping(s.data.sleep, s.data.contactMemory, c);
+    collide(s, c);
     const int steps = moveBodies(s, c, rest, next);
-    double taken = rest;
-    if (steps > 0 && firstNonFinite(next) < 0 && impacts < kMaxImpactsPerStep && s.bouncy && impactIn(s, next))
-      taken = locateImpact(s, c, rest, next);
-    std::swap(c.contacts, c.stepContacts);                           // the step's contacts, for sleep
-    if (steps > 0) std::swap(s.data.contactMemory, c.storedMemory);  // else no solve stored any
-    mergeBackSleeping(s.data.contactMemory, c);
-    if (steps == 0) return failed(-1);
-    if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);
-    c.stepImpulse = c.impulses.linear;
-    c.stepAngularImpulse = c.impulses.angular;
-    c.pushes = c.impulses.pushes;
-    if (const StepResult r = commit(s.model, s.data, next, s.h); !r.ok) return r;
+    const double taken = steps > 0 && impacts < kMaxImpactsPerStep ? impactInstant(s, c, rest, next) : rest;
+    if (const StepResult r = commitStep(s, c, steps, next); !r.ok) return r;
     addLoadsAndSleep(s, taken);
     s.data.steps += steps;
     done += taken;
@@ -449,6 +477,7 @@ StepResult stepOnce(StepContext& s) {
   const int steps = advance(s.model, s.data, s.h, next);
   if (steps == 0) return failed(-1);
   s.data.steps += steps;
+  StageTimer timer(s.data, Stage::Commit);
   return commit(s.model, s.data, next, s.h);
 }
 
@@ -498,7 +527,27 @@ void stabilitySubsteps(const WorldModel& model, const WorldData& data, double h,
   }
 }
 
+// The sub-steps a step of h needs (stabilitySubsteps, collisionSubsteps) and why.
+StepResult substepPlan(const WorldModel& model, WorldData& data, double h) {
+  StageTimer timer(data, Stage::Plan);
+  StepResult plan;
+  stabilitySubsteps(model, data, h, plan);
+  const long fast = collisionSubsteps(model, data, h);
+  if (fast > plan.substeps) {
+    plan.substeps = fast;
+    plan.cause = StepCause::FastBody;
+    plan.stableStep = h / fast;
+  }
+  return plan;
+}
+
 }  // namespace
+
+const char* stageName(Stage stage) {
+  static constexpr const char* kNames[kStageCount] = {"plan",  "wake",    "collide", "integrate",
+                                                      "solve", "impacts", "commit",  "sleep"};
+  return kNames[static_cast<int>(stage)];
+}
 
 const char* causeName(StepCause cause) {
   switch (cause) {
@@ -516,20 +565,16 @@ StepResult step(const WorldModel& model, WorldData& data, double h, bool stopAtI
   // (Fast bodies cost a collision detection per sub-step, hence their lower cap.)
   constexpr long kMaxSubsteps = 1000000;
   constexpr long kMaxFastSubsteps = 10000;
-  StepResult plan;
-  stabilitySubsteps(model, data, h, plan);
-  const long fast = collisionSubsteps(model, data, h);
-  if (fast > plan.substeps) {
-    plan.substeps = fast;
-    plan.cause = StepCause::FastBody;
-    plan.stableStep = h / fast;
-  }
+  StepResult plan = substepPlan(model, data, h);
   if (plan.substeps > (plan.cause == StepCause::FastBody ? kMaxFastSubsteps : kMaxSubsteps)) {
     plan.ok = false;
     return plan;
   }
   if (data.profiling) data.profile.steps += plan.substeps;
-  if constexpr (modules::kCollisions) wakeDriven(data);
+  if constexpr (modules::kCollisions) {
+    StageTimer timer(data, Stage::Wake);
+    wakeDriven(data);
+  }
   StepContext context{model, data, h / static_cast<double>(plan.substeps), bouncyWorld(model), stopAtImpact};
   for (long k = 0; k < plan.substeps; ++k) {
     StepResult r = stepOnce(context);

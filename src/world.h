@@ -45,16 +45,29 @@ struct Scratch {
   double adaptiveStep = 0.0;     // s, the adaptive method's next trial step (0: none yet)
 };
 
+// The stages of a step, in the order step() runs them: the plan of sub-steps (an
+// explicit method's stability, fast bodies), waking the islands that inputs drive; then
+// in each internal step: collide (the contacts of its start), integrate (the method's
+// free motion of every awake body), solve (the constraint solver: impacts, sub-steps,
+// store), impacts (is there a bouncing impact inside the step, and when: trial steps),
+// commit (the new state's checks) and sleep (contact loads, islands, who sleeps).
+enum class Stage { Plan, Wake, Collide, Integrate, Solve, Impacts, Commit, Sleep };
+constexpr int kStageCount = 8;
+const char* stageName(Stage stage);  // "plan", "wake", "collide", ...
+
 // Where a step's time goes (ns, summed over steps), for the benchmarks: filled only
 // while WorldData::profiling is set, so that a normal run pays no clock reads.
 struct StepProfile {
-  double integration = 0.0;  // the integrator's stages (impact location's re-integrations too)
-  double broadphase = 0.0;   // poses, bounding boxes, the sweep in grid rows and its candidate pairs
-  double narrowphase = 0.0;  // contact points of the candidate pairs
-  double response = 0.0;     // the constraint solver: impacts, sub-steps, store
+  // per Stage: its time, and how often it ran; a stage run inside another (the trial
+  // steps of impacts) is that one's time
+  double time[kStageCount] = {};
+  long runs[kStageCount] = {};
+  double broadphase = 0.0;   // of every detection: poses, bounding boxes, the sweep in grid rows
+  double narrowphase = 0.0;  // of every detection: contact points of the candidate pairs
   long steps = 0;            // internal steps profiled
   long solves = 0;           // constraint solves
   long points = 0;           // contact points answered, summed over the solves
+  int running = -1;          // the Stage being timed, -1 when none
 };
 
 // Everything that changes during a run.

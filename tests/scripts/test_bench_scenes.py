@@ -13,7 +13,7 @@ def _without(body, *keys):
 
 
 def test_wide_pile_is_the_pile_of_100_on_a_wider_grid():
-    wide, small = bench.pile_wide_scene(bench.WIDE_PILE), bench.pile_manifold_scene(100)
+    wide, small = bench.pile_wide_scene(bench.WIDE_PILE), bench.pile_scene(100)
     assert len(wide["bodies"]) == bench.WIDE_PILE
     # the same cubes (shape, mass, friction, restitution), floor, step and solver
     assert {str(_without(b, "name", "position", "orientation")) for b in wide["bodies"]} == \
@@ -40,9 +40,9 @@ def test_another_tilt_pattern_moves_no_cube_and_turns_them_otherwise():
 
 def test_tilt_option_writes_the_piles_with_that_pattern(tmp_path):
     bench.main([str(tmp_path), "--tilt", "1.3,2.9"])
-    written = json.loads((tmp_path / "pile_manifold_100.json").read_text())
-    assert written == bench.pile_manifold_scene(100, (1.3, 2.9))
-    assert written["bodies"] != bench.pile_manifold_scene(100)["bodies"]
+    written = json.loads((tmp_path / "pile_100.json").read_text())
+    assert written == bench.pile_scene(100, tilt=(1.3, 2.9))
+    assert written["bodies"] != bench.pile_scene(100)["bodies"]
 
 
 @pytest.mark.parametrize("tilt", ["1.3", "a,b", "nan,1", "1,2,3"])

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -510,6 +511,35 @@ TEST(ContactSolver, SpeculativePointsLandAFastCubeWithoutOverlap) {
   sim.run(0.3, [&] { deepest = std::max(deepest, sim.deepestOverlap()); });
   EXPECT_LT(deepest, 3e-4);
   EXPECT_LT(sim.fastest(), 1e-3);
+}
+
+// The step's profile (WorldData::profiling): in a bouncy pile every stage runs, plan and
+// wake once a step, collide, integrate, solve, impacts, commit and sleep once an internal
+// step (and again after each located impact); the stages' times are positive and add up
+// to no more than the steps' wall time.
+TEST(ContactSolver, TheProfileTimesEachStageOfTheStep) {
+  json bodies = pile(8, 2);
+  for (json& b : bodies) b["restitution"] = 0.5;
+  Sim sim(sceneOf(bodies, {floorSurface(0.6, 0.6, 0.5)}, 2e-3));
+  sim.data.profiling = true;
+  const auto start = std::chrono::steady_clock::now();
+  sim.run(0.5);
+  const double wall = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
+  const rigid::StepProfile& p = sim.data.profile;
+  const long steps = 250;
+  double sum = 0.0;
+  for (int k = 0; k < rigid::kStageCount; ++k) {
+    const auto stage = static_cast<rigid::Stage>(k);
+    EXPECT_GT(p.time[k], 0.0) << rigid::stageName(stage);
+    sum += p.time[k];
+    if (stage == rigid::Stage::Plan || stage == rigid::Stage::Wake)
+      EXPECT_EQ(p.runs[k], steps) << rigid::stageName(stage);
+    else
+      EXPECT_GE(p.runs[k], steps) << rigid::stageName(stage);
+  }
+  EXPECT_EQ(p.runs[static_cast<int>(rigid::Stage::Collide)], p.runs[static_cast<int>(rigid::Stage::Solve)]);
+  EXPECT_LT(sum, wall);
+  EXPECT_EQ(p.running, -1);
 }
 
 // Two runs from the same start are bitwise equal, and a copy of the data taken midway

@@ -56,6 +56,9 @@ PILE_RATIO_TARGET = 0.5      # our time per simulated second / MuJoCo's, pile of
 PENETRATION_TARGET = 1e-3    # m
 # the stages of WorldData::profile, in the 3 s piles' section's order
 STAGES = ("integration", "broadphase", "narrowphase", "response")
+# the step's stages in the order it runs them (src/world.h, Stage): the benchmark's
+# <window>_ns_stage_<name> and <window>_runs_stage_<name>
+STEP_STAGES = ("plan", "wake", "collide", "integrate", "solve", "impacts", "commit", "sleep")
 
 
 def log(msg):
@@ -160,12 +163,15 @@ def window_figures(b):
         steps, cpu, wall = b[f"{w}_steps"], b[f"{w}_cpu_s"], b[f"{w}_wall_ns"]
         shares = {s: b[f"{w}_ns_{s}"] / wall if wall > 0 else math.nan for s in STAGES}
         shares["other"] = 1.0 - sum(shares.values())
+        stage_shares = {s: b[f"{w}_ns_stage_{s}"] / wall if wall > 0 else math.nan for s in STEP_STAGES}
+        stage_shares["other"] = 1.0 - sum(stage_shares.values())
         solves = b[f"{w}_solves"]
         out[w] = {"steps": steps,
                   # a window cut short by a failed step: the time of the steps it has
                   "s_per_simulated_s": cpu / (steps * bench_scenes.PILE_STEP) if steps else math.nan,
                   "us_per_step": cpu / steps * 1e6 if steps else math.nan,
-                  "shares": shares, "solves_per_step": solves / steps if steps else math.nan,
+                  "shares": shares, "stage_shares": stage_shares,
+                  "solves_per_step": solves / steps if steps else math.nan,
                   # the contact points a solve answered, each through the same fixed
                   # sub-steps and relax pass
                   "points_per_solve": b[f"{w}_points_per_solve"] if solves else math.nan}
@@ -919,6 +925,15 @@ def write_windows_section(w, r):
             sh = m[wnd]["shares"]
             w(f"| {n} | {name} | " + " | ".join(pct(sh[k]) for k in STAGES + ("other",)) + " |")
     w("")
+    w("The same steps by the step's stages (`src/world.h`, `Stage`, in the order a step runs them; "
+      "*other* is the step outside them):\n")
+    w("| N | window | " + " | ".join(STEP_STAGES) + " | other |")
+    w("|---:|---|" + "---:|" * (len(STEP_STAGES) + 1))
+    for n, m in windows.items():
+        for wnd, name in (("fall", "falling, 0–1 s"), ("rest", "at rest, 2–3 s")):
+            sh = m[wnd]["stage_shares"]
+            w(f"| {n} | {name} | " + " | ".join(pct(sh[k]) for k in STEP_STAGES + ("other",)) + " |")
+    w("")
     w("### Beside MuJoCo\n")
     mj = {p["n"]: p for p in (peers or {}).get("piles", []) if p["integrator"] == "Euler"}
     if not peers:
@@ -1068,6 +1083,8 @@ def main(argv=None, prog=None):
         for wnd, name in (("fall", "falling"), ("rest", "at rest")):
             log(f"    shares {name}: " + ", ".join(f"{k} {pct(m[wnd]['shares'][k])}"
                                                     for k in STAGES + ("other",)))
+            log(f"    stages {name}: " + ", ".join(f"{k} {pct(m[wnd]['stage_shares'][k])}"
+                                                    for k in STEP_STAGES + ("other",)))
     if windows_il:
         log(f"  pile {windows_il['n']} at rest: ours/MuJoCo Euler at rest = {windows_il['ratio']:.2f} "
             f"(median of {len(windows_il['rounds'])} interleaved rounds)")

@@ -809,21 +809,23 @@ bool CollisionDetector::Impl::appendFclContacts(const Pair& pr, double margin, c
   const double sign = first.o1 == oA->collisionGeometry().get() ? 1.0 : -1.0;
   Vec3 n = sign * first.normal;
   // libccd's EPA answers a pair that only touches with an arbitrary normal and depth
-  // (a puck standing exactly on the floor: 1.65 m along the slab's side). A box's face
-  // normals bound the depth: when one of them separates the pair or meets it at zero,
-  // the pair touches at most and is answered along that face; when FCL's depth
-  // exceeds the overlap along one, that face's normal is the better answer.
-  if (A.type == ShapeType::Box || B.type == ShapeType::Box) {
-    Vec3 axis;
-    const double separation = faceSeparation(A, B, axis);
-    if (separation >= 0.0) return appendFacePatch(A, B, axis, margin, proto, out) > 0;
-    if (first.penetration_depth > -separation + kGjkSlack) n = axis;
-  }
+  // (a puck standing exactly on the floor: 1.65 m along the slab's side), or with none
+  // (a capsule's cap touching the floor at 2e-16 m). A box's face normals bound the
+  // depth: when one of them separates the pair or meets it at zero, the pair touches
+  // at most and is answered along that face; when FCL's depth exceeds the overlap along
+  // one, or FCL gives no normal, that face's normal (without a box, the centre line)
+  // is the answer.
+  Vec3 axis;
+  const double separation = faceSeparation(A, B, axis);  // -infinity without a box
+  if (separation >= 0.0) return appendFacePatch(A, B, axis, margin, proto, out) > 0;
+  auto unit = [](const Vec3& v) { return std::abs(v.norm() - 1.0) < 1e-6; };
+  if (!unit(n) || first.penetration_depth > -separation + kGjkSlack) n = axis;
   if (appendFacePatch(A, B, n, margin, proto, out) > 0) return true;
   for (size_t i = 0; i < result.numContacts(); ++i) {
     const fcl::Contactd& fc = result.getContact(i);
     Contact c = proto;
     c.normal = (fc.o1 == oA->collisionGeometry().get() ? 1.0 : -1.0) * fc.normal;
+    if (!unit(c.normal)) c.normal = n;
     c.depth = std::max(fc.penetration_depth, 0.0);
     c.point = fc.pos;
     if (A.type == ShapeType::Sphere && B.type == ShapeType::Sphere)  // midway in the overlap

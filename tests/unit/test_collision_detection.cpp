@@ -337,6 +337,25 @@ TEST(CollisionDetection, CylinderTouchingTheFloorExactlyIsAContactOfDepthZero) {
   }
 }
 
+// A tilted capsule whose lower cap touches the floor at 2e-16 m, where libccd gives no
+// normal (a pose the replay test's tumbling rod met, written out to all its digits):
+// the contact points into the floor, unit, at depth zero.
+TEST(CollisionDetection, CapsuleCapTouchingTheFloorGetsTheFloorsNormal) {
+  rigid::WorldModel m;
+  m.bodies = {capsule(0.1, 0.5)};
+  m.surfaces = {surface(Vec3(-3, -2, -0.2), Vec3(3, 2, 0))};
+  const Quat q(0.7134488626480523, 0.6868676961971466, -0.058085925852615718, 0.12581539462589372);
+  const Vec3 X(1.1656863698413125, 0.86743630522371695, 0.11241939656682355);
+  for (double margin : {0.0, 0.004}) {
+    const std::vector<Contact> out = detect(m, {pose(X, q.normalized())}, margin);
+    ASSERT_GE(out.size(), 1u) << "margin " << margin;
+    for (const Contact& c : out) {
+      EXPECT_NEAR((c.normal - Vec3(0, 0, -1)).norm(), 0.0, 1e-9) << "margin " << margin;
+      EXPECT_NEAR(c.depth, 0.0, 1e-9) << "margin " << margin;
+    }
+  }
+}
+
 TEST(CollisionDetection, CapsuleStandingAndLyingOnTheFloor) {
   rigid::WorldModel m;
   const double r = 0.1, l = 0.4, d = 0.002;

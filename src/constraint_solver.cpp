@@ -201,17 +201,45 @@ double approachSpeed(const WorldModel& model, const std::vector<BodyState>& Y, c
   return -c.normal.dot(pointVelocity(c.b) - pointVelocity(c.a));
 }
 
+// The rows of one pair's points contacts[first, end) into s.points. A speculative point
+// (apart by a gap) of a bouncing pair that closes faster than a resting body can is left
+// out: its impact is located in time, and slowing it early would take energy from the
+// bounce. A slower one is held at its gap as any other (it would not bounce).
+void addPoints(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts, size_t first,
+               size_t end, double restingSpeed, Manifold& m, Solver& s) {
+  const Contact& c = contacts[first];
+  Vec3 centre = Vec3::Zero(), normal = Vec3::Zero();
+  m.first = s.points.size();
+  for (size_t k = first; k < end; ++k) {
+    const bool touching = contacts[k].depth >= -kTouching;
+    if (!touching && m.k.xi > 0.0 && approachSpeed(model, data.Y, contacts[k]) > restingSpeed) continue;
+    Point p;
+    p.touching = touching;
+    p.separation = -contacts[k].depth;
+    p.rA = p.rA0 = contacts[k].point - data.Y[c.a].X;
+    p.rB = p.rB0 = c.b >= 0 ? Vec3(contacts[k].point - data.Y[c.b].X) : Vec3::Zero();
+    p.localA = data.Y[c.a].q.normalized().conjugate() * p.rA;
+    centre += contacts[k].point;
+    normal += contacts[k].normal;
+    s.points.push_back(p);
+  }
+  m.count = s.points.size() - m.first;
+  if (m.count == 0) return;
+  m.normal = normal.normalized();
+  centre /= static_cast<double>(m.count);
+  m.rA = m.rA0 = centre - data.Y[c.a].X;
+  m.rB = m.rB0 = c.b >= 0 ? Vec3(centre - data.Y[c.b].X) : Vec3::Zero();
+}
+
 // A manifold per touching pair (the detector's points come grouped by pair), a normal
-// row per point. A speculative point (apart by a gap) of a bouncing pair that closes
-// faster than a resting body can is left out: its impact is located in time, and
-// slowing it early would take energy from the bounce. A slower one is held at its gap
-// as any other (it would not bounce).
+// row per point, the pair's friction rows. The springs and the resting speed are the
+// nominal step's (solveConstraints), the sub-steps h's.
 void prepareRows(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts, double h,
-                 Solver& s) {
+                 double nominal, Solver& s) {
   const double hSub = h / kSubsteps;
-  const double hertz = kContactHertzShare / hSub;
+  const double hertz = kContactHertzShare * kSubsteps / nominal;
   const Softness soft = makeSoft(hertz, kDampingRatio, hSub), stiff = makeSoft(2.0 * hertz, kDampingRatio, hSub);
-  const double restingSpeed = restingNormalSpeed(model.gravity, h);
+  const double restingSpeed = restingNormalSpeed(model.gravity, nominal);
   s.points.clear();
   s.manifolds.clear();
   for (size_t i = 0; i < contacts.size();) {
@@ -227,30 +255,11 @@ void prepareRows(const WorldModel& model, const WorldData& data, const std::vect
     m.surface = c.surface;
     m.soft = c.b >= 0 ? soft : stiff;
     m.radius = c.patchRadius;
-    m.first = s.points.size();
-    Vec3 centre = Vec3::Zero(), normal = Vec3::Zero();
-    for (size_t k = i; k < end; ++k) {
-      const bool touching = contacts[k].depth >= -kTouching;
-      if (!touching && m.k.xi > 0.0 && approachSpeed(model, data.Y, contacts[k]) > restingSpeed) continue;
-      Point p;
-      p.touching = touching;
-      p.separation = -contacts[k].depth;
-      p.rA = p.rA0 = contacts[k].point - data.Y[c.a].X;
-      p.rB = p.rB0 = c.b >= 0 ? Vec3(contacts[k].point - data.Y[c.b].X) : Vec3::Zero();
-      p.localA = data.Y[c.a].q.normalized().conjugate() * p.rA;
-      centre += contacts[k].point;
-      normal += contacts[k].normal;
-      s.points.push_back(p);
-    }
+    addPoints(model, data, contacts, i, end, restingSpeed, m, s);
     i = end;
-    m.count = s.points.size() - m.first;
     if (m.count == 0) continue;
     prepareBody(model, data, hSub, m.a, s);
     if (c.b >= 0) prepareBody(model, data, hSub, c.b, s);
-    m.normal = normal.normalized();
-    centre /= static_cast<double>(m.count);
-    m.rA = m.rA0 = centre - data.Y[c.a].X;
-    m.rB = m.rB0 = c.b >= 0 ? Vec3(centre - data.Y[c.b].X) : Vec3::Zero();
     const Body& A = s.bodies[m.a];
     const Body& B = s.bodies[m.b];
     for (size_t k = m.first; k < m.first + m.count; ++k) {
@@ -590,7 +599,7 @@ void countTouching(const std::vector<Contact>& contacts, std::vector<int>& count
 
 // The step's rows and the impacts at its start (both entry points begin so).
 Solver& prepareAndAnswerImpacts(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
-                                double h, ConstraintScratchPtr& scratch, ContactImpulses& impulses,
+                                double h, double nominal, ConstraintScratchPtr& scratch, ContactImpulses& impulses,
                                 ConstraintReport& report) {
   const size_t n = data.Y.size();
   impulses.linear.assign(n, Vec3::Zero());
@@ -601,9 +610,9 @@ Solver& prepareAndAnswerImpacts(const WorldModel& model, const WorldData& data, 
   s.bodies.assign(n + 1, Body{});
   s.involved.assign(n, 0);
   s.moving.clear();
-  prepareRows(model, data, contacts, h, s);
+  prepareRows(model, data, contacts, h, nominal, s);
   report.points = static_cast<int>(s.points.size());
-  report.impactPasses = answerImpacts(s, restingNormalSpeed(model.gravity, h), h, impulses);
+  report.impactPasses = answerImpacts(s, restingNormalSpeed(model.gravity, nominal), h, impulses);
   return s;
 }
 
@@ -613,19 +622,19 @@ ConstraintReport answerImpactsNow(const WorldModel& model, const WorldData& data
                                   double h, std::vector<BodyState>& next, ConstraintScratchPtr& scratch,
                                   ContactImpulses& impulses) {
   ConstraintReport report;
-  const Solver& s = prepareAndAnswerImpacts(model, data, contacts, h, scratch, impulses, report);
+  const Solver& s = prepareAndAnswerImpacts(model, data, contacts, h, h, scratch, impulses, report);
   commitBodies(model, data, s, 0, next, impulses);
   return report;
 }
 
 ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
-                                  double h, const std::vector<ContactMemory>& remembered,
+                                  double h, double nominal, const std::vector<ContactMemory>& remembered,
                                   std::vector<ContactMemory>& stored, std::vector<BodyState>& next,
                                   std::vector<int>& count, ConstraintScratchPtr& scratch, ContactImpulses& impulses) {
   ConstraintReport report;
   countTouching(contacts, count);
-  Solver& s = prepareAndAnswerImpacts(model, data, contacts, h, scratch, impulses, report);
-  const double restingSpeed = restingNormalSpeed(model.gravity, h);
+  Solver& s = prepareAndAnswerImpacts(model, data, contacts, h, nominal, scratch, impulses, report);
+  const double restingSpeed = restingNormalSpeed(model.gravity, nominal);
   warmStart(remembered, s);
   const double hSub = h / kSubsteps;
   for (int k = 0; k < kSubsteps; ++k) {

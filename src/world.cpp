@@ -366,8 +366,9 @@ int moveBodies(StepContext& s, CollisionCache& c, double tau, std::vector<BodySt
   const SleepState& sleep = s.data.sleep;
   for (size_t i = 0; i < s.data.contacts.size(); ++i)
     if (!sleep.asleep[i]) s.data.contacts[i] = 0;  // a sleeping body keeps its count
-  const ConstraintReport report = solveConstraints(s.model, s.data, c.stepContacts, tau, s.data.contactMemory,
-                                                   c.storedMemory, next, s.data.contacts, c.constraints, c.impulses);
+  const ConstraintReport report =
+      solveConstraints(s.model, s.data, c.stepContacts, tau, s.model.maxStep, s.data.contactMemory, c.storedMemory,
+                       next, s.data.contacts, c.constraints, c.impulses);
   if (s.data.profiling) {
     ++s.data.profile.solves;
     s.data.profile.points += report.points;

@@ -109,6 +109,15 @@ def test_piles_falling_and_at_rest(quick):
     assert any(x.startswith("sleep off, at rest: growth") for x in checks)
 
 
+def test_bodies_that_can_collide_cost_beside_free_ones(quick):
+    _, _, r = quick
+    c = r["colliding"]
+    assert c["n"] == 100  # quick mode
+    assert measured(c["free_ns"]) and measured(c["colliding_ns"]) and measured(c["ratio"])
+    labels = [row[0] for row in r["targets"]]
+    assert any(x.startswith("100 bodies that can collide but touch nothing") for x in labels)
+
+
 def test_fmu_costs_and_overhead(quick):
     _, _, r = quick
     for n in ("1", "100"):

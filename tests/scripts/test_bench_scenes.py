@@ -51,3 +51,13 @@ def test_malformed_tilt_is_refused_with_what_it_takes(tmp_path, tilt):
         bench.main([str(tmp_path), "--tilt", tilt])
     assert "two finite frequencies" in str(refused.value)
     assert not list(tmp_path.iterdir())
+
+
+def test_tumbling_bodies_are_the_free_ones_with_collisions_on():
+    free, tumbling = bench.free_scene(100), bench.tumbling_scene(100)
+    assert [_without(b, "collision") for b in tumbling["bodies"]] == [_without(b, "collision") for b in free["bodies"]]
+    assert all(b["collision"] for b in tumbling["bodies"]) and not any(b["collision"] for b in free["bodies"])
+    # 3 m apart: the nearest two centres farther than twice a body's half diagonal
+    xy = [b["position"] for b in tumbling["bodies"]]
+    nearest = min(((a[0] - b[0]) ** 2 + (a[1] - b[1]) ** 2) ** 0.5 for i, a in enumerate(xy) for b in xy[i + 1:])
+    assert nearest >= 3.0 > 2 * (0.15 ** 2 + 0.1 ** 2 + 0.05 ** 2) ** 0.5

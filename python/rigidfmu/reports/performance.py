@@ -52,6 +52,7 @@ PEERS_PYTHON = ROOT / ".venv-peers" / "bin" / "python"
 
 # The issue's targets
 RK4_TARGET_NS = 100.0        # ns per body-step, free bodies, rk4, N = 1000
+COLLIDING_RATIO_TARGET = 1.3  # bodies that can collide but touch nothing, over free ones (FMU)
 PILE_RATIO_TARGET = 0.5      # our time per simulated second / MuJoCo's, pile of 1000
 PENETRATION_TARGET = 1e-3    # m
 # the stages of WorldData::profile, in the 3 s piles' section's order
@@ -328,6 +329,25 @@ def fmu_bench(fmus, folder, quick):
     return out
 
 
+def colliding_cost(build, scenes, folder, quick):
+    """Free bodies that can collide but touch nothing (tumbling_<N>: 3 m apart) against
+    the same bodies out of collisions (free_<N>), through the FMU: CPU per body-step,
+    amortised over communication steps of 1 s, the two timed in turn round by round;
+    medians."""
+    n = 100 if quick else 1000
+    fmus = build_fmus(build, scenes, [f"free_{n}", f"tumbling_{n}"], folder)
+    per = {"free": [], "colliding": []}
+    for _ in range(1 if quick else 3):
+        for key, name in (("free", f"free_{n}"), ("colliding", f"tumbling_{n}")):
+            s = Slave(fmus[name], folder)
+            s.steps(1e-3, 10)  # warm-up
+            per[key].append(s.steps(1.0, 1) / (1000 * n))
+            s.close()
+    free, colliding = statistics.median(per["free"]), statistics.median(per["colliding"])
+    log(f"FMU tumbling_{n} (can collide) {colliding * 1e9:.0f} ns vs free_{n} {free * 1e9:.0f} ns per body-step")
+    return {"n": n, "free_ns": free * 1e9, "colliding_ns": colliding * 1e9, "ratio": colliding / free}
+
+
 # ----------------------------------------------------------------------------------
 # 3. accuracy of the free tumbling body, ours and MuJoCo's
 
@@ -420,7 +440,7 @@ def growth(points):
     return [(a, b, slope(a, points[a], b, points[b]), nlogn_slope(a, b)) for a, b in zip(ns, ns[1:])]
 
 
-def targets(free, piles, peers, interleaved=None):
+def targets(free, piles, peers, interleaved=None, colliding=None):
     rows = []
     rk4 = free.get("rk4", {})
     if 1000 in rk4:
@@ -460,6 +480,12 @@ def targets(free, piles, peers, interleaved=None):
         rows.append((f"pile of {big}: penetration ≤ 1 mm",
                      f"{state * 1e3:.2f} mm in the output state ({pen * 1e3:.2f} mm before the response)",
                      "PASS" if state <= PENETRATION_TARGET else "MISS"))
+    if colliding:
+        c = colliding
+        rows.append((f"{c['n']} bodies that can collide but touch nothing: ≤ {COLLIDING_RATIO_TARGET}x the same "
+                     "bodies out of collisions, through the FMU",
+                     f"{c['colliding_ns']:.0f} ns vs {c['free_ns']:.0f} ns per body-step: ratio {c['ratio']:.2f}",
+                     "PASS" if c["ratio"] <= COLLIDING_RATIO_TARGET else "MISS"))
     # time per step; free bodies from 100 up (below, the fixed cost of a step dominates)
     for label, pts in (("free rk4", {n: v * n for n, v in rk4.items() if n >= 100}),
                        ("piles", {n: p["total_us"] for n, p in piles.items()})):
@@ -1006,6 +1032,7 @@ def main(argv=None, prog=None):
         for n, f in fmu.items():
             f["core_step_s"] = free["rk4"][n] * n * 1e-9
             f["overhead_s"] = f["do_step_s"] - f["core_step_s"]
+        colliding = colliding_cost(build, scenes, folder, args.quick)
         log("== accuracy of a free tumbling body (ours)")
         inertia, omega0 = free_body(scenes)
         q_ref = torque_free_reference(inertia, omega0, T)
@@ -1033,7 +1060,7 @@ def main(argv=None, prog=None):
         accuracy["mujoco"] = peers["free_one"]
         accuracy["equal_accuracy"] = equal_accuracy(ours, [m for m in peers["free_one"] if m["integrator"] == "RK4"])
 
-    rows = targets(free, piles, peers, interleaved)
+    rows = targets(free, piles, peers, interleaved, colliding)
     wrows = windows_targets(windows, peers, windows_il) + equal_height_targets(windows, windows_wide)
     wchecks = windows_checks(windows, windows_il, windows_awake)
     meta = {"quick": args.quick, "date": time.strftime("%Y-%m-%d %H:%M %Z"), "cpu": cpu_name(),
@@ -1041,7 +1068,8 @@ def main(argv=None, prog=None):
             "benchmark_library": f"1.7 ({context.get('library_build_type', '?')} build, Debian)",
             "load_avg": context.get("load_avg"), "source": source_state(),
             "seconds": time.perf_counter() - t_start}
-    report = {"free": free, "piles": piles, "fmu": fmu, "peers": peers, "interleaved": interleaved,
+    report = {"free": free, "piles": piles, "fmu": fmu, "colliding": colliding, "peers": peers,
+              "interleaved": interleaved,
               "windows": windows, "windows_interleaved": windows_il, "windows_targets": wrows,
               "windows_checks": wchecks,
               "windows_awake": windows_awake, "windows_wide": windows_wide, "windows_tilts": windows_tilts,

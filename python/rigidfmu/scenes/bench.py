@@ -5,11 +5,12 @@ One pile file per count serves the benchmarks that time it over 1 s (BM_Pile) an
 3 s with its falling and resting windows (BM_PileWindows, BM_PileAwake), and MuJoCo. A
 wide pile (BM_PileWide) has as many cubes as the largest but in columns as short as the
 pile of 100's, so that the growth from 100 cubes can be read at equal height as well as
-at the growing height of the cube-root piles. No scene names a contact solver: there is
-one (the constraint solver).
+at the growing height of the cube-root piles. Tumbling bodies are the free bodies with
+collisions on: they can collide but, 3 m apart, touch nothing. No scene names a contact
+solver: there is one (the constraint solver).
 
-  python -m rigidfmu.scenes.bench DIR    writes DIR/free_<N>.json, DIR/pile_<N>.json and
-                                         DIR/pile_wide_<N>.json
+  python -m rigidfmu.scenes.bench DIR    writes DIR/free_<N>.json, DIR/pile_<N>.json,
+                                         DIR/pile_wide_<N>.json and DIR/tumbling_<N>.json
   python -m rigidfmu.scenes.bench DIR --tilt A,B
                                          the same with the piles' cubes tilted by another
                                          pattern (TILT's frequencies replaced by A and B):
@@ -25,6 +26,7 @@ from rigidfmu.scenes import body, diag, floor, scene
 
 FREE_COUNTS = (1, 10, 100, 1000, 10000)
 PILE_COUNTS = (10, 100, 1000)
+TUMBLING_COUNTS = (100, 1000)
 WIDE_PILE = 1024   # 16 x 16 columns of 4: the pile of 100's height (5 x 5 columns of 4)
 WIDE_LAYERS = 4
 PILE_STEP = 2e-3   # s: MuJoCo's default timestep, the issue's figures' dt
@@ -45,6 +47,16 @@ def free_scene(n):
             angularVelocity=[0.4 + 0.1 * math.cos(a), 0.3, 3.0 + 0.1 * math.sin(a)],
             collision=False, outputs=["position", "orientation"], inputs=[]))
     return scene(f"Free{n}", bodies, gravity=(0, 0, 0))
+
+
+def tumbling_scene(n):
+    """free_scene(n) with collisions on: the same bodies, 3 m apart, which can collide
+    but never touch; what the collision module costs bodies that meet nothing."""
+    scene = free_scene(n)
+    scene["name"] = f"Tumbling{n}"
+    for b in scene["bodies"]:
+        b["collision"] = True
+    return scene
 
 
 def pile_layout(n, layers=None, tilt=TILT):
@@ -98,6 +110,8 @@ def write(directory, tilt=TILT):
     for n in PILE_COUNTS:
         (d / f"pile_{n}.json").write_text(json.dumps(pile_scene(n, tilt=tilt)))
     (d / f"pile_wide_{WIDE_PILE}.json").write_text(json.dumps(pile_wide_scene(WIDE_PILE, tilt)))
+    for n in TUMBLING_COUNTS:
+        (d / f"tumbling_{n}.json").write_text(json.dumps(tumbling_scene(n)))
 
 
 def main(argv):

@@ -340,8 +340,9 @@ int collisionSubsteps(const WorldModel& model, const WorldData& data, double h) 
 // what two of the fastest bodies can close in the next step, so that a cube falling
 // at 5 m/s (1 cm a 2 ms step) is caught as it lands instead of sinking in and being
 // pushed out. At most kMaxSpeculativeMargin: faster bodies are sub-stepped.
+constexpr double kMaxSpeculativeMargin = 0.05;  // m
+
 double speculativeMargin(const StepContext& s, const std::vector<BodyState>& Y) {
-  constexpr double kMaxSpeculativeMargin = 0.05;  // m
   const CollisionCache* c = modules::kCollisions ? s.data.collision.get() : nullptr;
   if (!c) return kSpeculativeMargin;
   double fastest = 0.0;  // m/s, the largest speed of a point of a body that meets something
@@ -414,17 +415,22 @@ StepResult answerLocatedImpact(StepContext& s, CollisionCache& c) {
 // The contacts of the step's start into the cache's stepContacts, with the speculative
 // margin (the cache's `contacts` then serve the impacts' probes); the sleeping bodies'
 // memory set aside.
-void collide(StepContext& s, CollisionCache& c) {
+// Returns whether an impact can happen within the step: no pair can close more than the
+// margin in it (twice the fastest point's travel), so with no pair within the margin
+// there is none, unless the margin was capped.
+bool collide(StepContext& s, CollisionCache& c) {
   StageTimer timer(s.data, Stage::Collide);
-  detectContacts(s, s.data.Y, speculativeMargin(s, s.data.Y));
+  const double margin = speculativeMargin(s, s.data.Y);
+  detectContacts(s, s.data.Y, margin);
   std::swap(c.contacts, c.stepContacts);
   setAsideSleeping(s.data.sleep, s.data.contactMemory, c);
+  return !c.stepContacts.empty() || margin >= kMaxSpeculativeMargin;
 }
 
 // How much of the rest of the step to take: all of it, or up to the instant of a
-// bouncing impact inside it (next then holds the state there).
-double impactInstant(StepContext& s, CollisionCache& c, double rest, std::vector<BodyState>& next) {
-  if (!s.bouncy || firstNonFinite(next) >= 0) return rest;
+// bouncing impact inside it (next then holds the state there), when one can happen.
+double impactInstant(StepContext& s, CollisionCache& c, bool reachable, double rest, std::vector<BodyState>& next) {
+  if (!s.bouncy || !reachable || firstNonFinite(next) >= 0) return rest;
   StageTimer timer(s.data, Stage::Impacts);
   return impactIn(s, next) ? locateImpact(s, c, rest, next) : rest;
 }
@@ -453,9 +459,9 @@ StepResult stepWithContacts(StepContext& s, CollisionCache& c) {
   double done = 0.0;
   for (int impacts = 0;; ++impacts) {
     const double rest = s.h - done;
-    collide(s, c);
+    const bool reachable = collide(s, c);
     const int steps = moveBodies(s, c, rest, next);
-    const double taken = steps > 0 && impacts < kMaxImpactsPerStep ? impactInstant(s, c, rest, next) : rest;
+    const double taken = steps > 0 && impacts < kMaxImpactsPerStep ? impactInstant(s, c, reachable, rest, next) : rest;
     if (const StepResult r = commitStep(s, c, steps, next); !r.ok) return r;
     addLoadsAndSleep(s, taken);
     s.data.steps += steps;

@@ -570,6 +570,24 @@ TEST(ContactSolver, TheProfileTimesEachStageOfTheStep) {
   EXPECT_EQ(p.running, -1);
 }
 
+// Bodies that touch nothing within the speculative margin cannot strike within the
+// step (no pair closes more than the margin): the impacts stage does not run for them,
+// and runs as soon as a bouncy ball comes within reach of the floor.
+TEST(ContactSolver, TheImpactsStageRunsOnlyWhenAPairIsWithinReach) {
+  json ball = {{"name", "ball"},
+               {"shape", {{"type", "sphere"}, {"radius", 0.1}}},
+               {"mass", 1.0},
+               {"position", {0, 0, 1.1}},
+               {"restitution", 0.8}};
+  Sim sim(sceneOf(ball, floorSurface(0.6, 0.6, 0.8)));
+  sim.data.profiling = true;
+  sim.run(0.3);  // falling, 0.44 m above the floor at the end
+  EXPECT_EQ(sim.data.profile.runs[static_cast<int>(rigid::Stage::Impacts)], 0);
+  sim.run(0.3);  // it lands at 0.45 s and bounces
+  EXPECT_GT(sim.data.profile.runs[static_cast<int>(rigid::Stage::Impacts)], 0);
+  EXPECT_GT(sim.data.aux[0].V.z(), 0.0);
+}
+
 // Two runs from the same start are bitwise equal, and a copy of the data taken midway
 // (what an FMU state holds, the contact memory with it) continues bitwise.
 TEST(ContactSolver, RunsAreBitwiseReproducibleAndACopyContinuesBitwise) {

@@ -839,6 +839,17 @@ def fall_work(piles):
             if m["fall"]["points_per_solve"] > 0}
 
 
+def share_table(w, windows, key, columns):
+    """A table of each pile's window shares `key` over `columns`, and the rest as other."""
+    w("| N | window | " + " | ".join(columns) + " | other |")
+    w("|---:|---|" + "---:|" * (len(columns) + 1))
+    for n, m in windows.items():
+        for wnd, name in (("fall", "falling, 0–1 s"), ("rest", "at rest, 2–3 s")):
+            sh = m[wnd][key]
+            w(f"| {n} | {name} | " + " | ".join(pct(sh[k]) for k in columns + ("other",)) + " |")
+    w("")
+
+
 def write_windows_section(w, r):
     windows, peers, il = r.get("windows") or {}, r["peers"], r.get("windows_interleaved")
     piles = r["piles"]
@@ -944,22 +955,10 @@ def write_windows_section(w, r):
               f"{m['max_speed_3s_mps']:.3g} m/s | {m['asleep_3s']:.0f} of {n} |")
         w("")
     w("Where a step goes (shares of the steps' wall time):\n")
-    w("| N | window | " + " | ".join(STAGES) + " | other |")
-    w("|---:|---|" + "---:|" * (len(STAGES) + 1))
-    for n, m in windows.items():
-        for wnd, name in (("fall", "falling, 0–1 s"), ("rest", "at rest, 2–3 s")):
-            sh = m[wnd]["shares"]
-            w(f"| {n} | {name} | " + " | ".join(pct(sh[k]) for k in STAGES + ("other",)) + " |")
-    w("")
+    share_table(w, windows, "shares", STAGES)
     w("The same steps by the step's stages (`src/world.h`, `Stage`, in the order a step runs them; "
       "*other* is the step outside them):\n")
-    w("| N | window | " + " | ".join(STEP_STAGES) + " | other |")
-    w("|---:|---|" + "---:|" * (len(STEP_STAGES) + 1))
-    for n, m in windows.items():
-        for wnd, name in (("fall", "falling, 0–1 s"), ("rest", "at rest, 2–3 s")):
-            sh = m[wnd]["stage_shares"]
-            w(f"| {n} | {name} | " + " | ".join(pct(sh[k]) for k in STEP_STAGES + ("other",)) + " |")
-    w("")
+    share_table(w, windows, "stage_shares", STEP_STAGES)
     w("### Beside MuJoCo\n")
     mj = {p["n"]: p for p in (peers or {}).get("piles", []) if p["integrator"] == "Euler"}
     if not peers:

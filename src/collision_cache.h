@@ -30,10 +30,6 @@ struct CollisionCache {
   std::vector<int> island;
   std::vector<char> grounded, ready;
   std::vector<ContactMemory> sleepingMemory, mergedMemory;
-  // the last step's impulses: what the bodies gave the surfaces, each body's change of
-  // P and L (contact impulse and its moment)
-  std::vector<SurfacePush> pushes;
-  std::vector<Vec3> stepImpulse, stepAngularImpulse;
 };
 
 }  // namespace rigid

@@ -232,14 +232,14 @@ void addPoints(const WorldModel& model, const WorldData& data, const std::vector
 }
 
 // A manifold per touching pair (the detector's points come grouped by pair), a normal
-// row per point, the pair's friction rows. The springs and the resting speed are the
-// nominal step's (solveConstraints), the sub-steps h's.
+// row per point, the pair's friction rows. The springs and the resting speed are
+// solver.step's (solveConstraints), the sub-steps h's.
 void prepareRows(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts, double h,
-                 double nominal, Solver& s) {
+                 Solver& s) {
   const double hSub = h / kSubsteps;
-  const double hertz = kContactHertzShare * kSubsteps / nominal;
+  const double hertz = kContactHertzShare * kSubsteps / model.maxStep;
   const Softness soft = makeSoft(hertz, kDampingRatio, hSub), stiff = makeSoft(2.0 * hertz, kDampingRatio, hSub);
-  const double restingSpeed = restingNormalSpeed(model.gravity, nominal);
+  const double restingSpeed = restingNormalSpeed(model.gravity, model.maxStep);
   s.points.clear();
   s.manifolds.clear();
   for (size_t i = 0; i < contacts.size();) {
@@ -599,7 +599,7 @@ void countTouching(const std::vector<Contact>& contacts, std::vector<int>& count
 
 // The step's rows and the impacts at its start (both entry points begin so).
 Solver& prepareAndAnswerImpacts(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
-                                double h, double nominal, ConstraintScratchPtr& scratch, ContactImpulses& impulses,
+                                double h, ConstraintScratchPtr& scratch, ContactImpulses& impulses,
                                 ConstraintReport& report) {
   const size_t n = data.Y.size();
   impulses.linear.assign(n, Vec3::Zero());
@@ -610,9 +610,9 @@ Solver& prepareAndAnswerImpacts(const WorldModel& model, const WorldData& data, 
   s.bodies.assign(n + 1, Body{});
   s.involved.assign(n, 0);
   s.moving.clear();
-  prepareRows(model, data, contacts, h, nominal, s);
+  prepareRows(model, data, contacts, h, s);
   report.points = static_cast<int>(s.points.size());
-  report.impactPasses = answerImpacts(s, restingNormalSpeed(model.gravity, nominal), h, impulses);
+  report.impactPasses = answerImpacts(s, restingNormalSpeed(model.gravity, model.maxStep), h, impulses);
   return s;
 }
 
@@ -622,19 +622,19 @@ ConstraintReport answerImpactsNow(const WorldModel& model, const WorldData& data
                                   double h, std::vector<BodyState>& next, ConstraintScratchPtr& scratch,
                                   ContactImpulses& impulses) {
   ConstraintReport report;
-  const Solver& s = prepareAndAnswerImpacts(model, data, contacts, h, h, scratch, impulses, report);
+  const Solver& s = prepareAndAnswerImpacts(model, data, contacts, h, scratch, impulses, report);
   commitBodies(model, data, s, 0, next, impulses);
   return report;
 }
 
 ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
-                                  double h, double nominal, const std::vector<ContactMemory>& remembered,
+                                  double h, const std::vector<ContactMemory>& remembered,
                                   std::vector<ContactMemory>& stored, std::vector<BodyState>& next,
                                   std::vector<int>& count, ConstraintScratchPtr& scratch, ContactImpulses& impulses) {
   ConstraintReport report;
   countTouching(contacts, count);
-  Solver& s = prepareAndAnswerImpacts(model, data, contacts, h, nominal, scratch, impulses, report);
-  const double restingSpeed = restingNormalSpeed(model.gravity, nominal);
+  Solver& s = prepareAndAnswerImpacts(model, data, contacts, h, scratch, impulses, report);
+  const double restingSpeed = restingNormalSpeed(model.gravity, model.maxStep);
   warmStart(remembered, s);
   const double hSub = h / kSubsteps;
   for (int k = 0; k < kSubsteps; ++k) {

@@ -71,11 +71,11 @@ struct ContactImpulses {
 // from `remembered` (last step's points) and writes this step's to `stored`, so that
 // a step may be tried again from the same start (an impact located by bisection);
 // `impulses` takes the step's contact impulses; `count` gains each body's touching
-// points. The contacts' stiffness and resting speed are those of the `nominal` step
-// (solver.step), whatever h is: a step split at a located impact (h down to 1e-15 of
-// it), or cut into sub-steps, keeps the same springs, not ones stiffer by (nominal/h)^2.
+// points. The contacts' stiffness and resting speed are solver.step's (model.maxStep),
+// whatever h is: a step split at a located impact (h down to 1e-15 of it), or cut into
+// sub-steps, keeps the same springs, not ones stiffer by (maxStep/h)^2.
 ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
-                                  double h, double nominal, const std::vector<ContactMemory>& remembered,
+                                  double h, const std::vector<ContactMemory>& remembered,
                                   std::vector<ContactMemory>& stored, std::vector<BodyState>& next,
                                   std::vector<int>& count, ConstraintScratchPtr& scratch, ContactImpulses& impulses);
 

@@ -100,9 +100,9 @@ void updateSleep(const WorldModel& model, WorldData& data, double h, CollisionCa
     s.asleep[i] = 1;
     s.island[i] = root;
     ++s.sleeping;
-    s.restForce[i] = cache.stepImpulse[i] / h;
-    s.restTorque[i] = cache.stepAngularImpulse[i] / h;
-    for (const SurfacePush& p : cache.pushes)
+    s.restForce[i] = cache.impulses.linear[i] / h;
+    s.restTorque[i] = cache.impulses.angular[i] / h;
+    for (const SurfacePush& p : cache.impulses.pushes)
       if (p.body == i) s.resting.push_back({i, p.surface, p.impulse / h});
     data.Y[i].P.setZero();
     data.Y[i].L.setZero();

@@ -51,8 +51,6 @@ WorldData initialData(const WorldModel& model) {
     const long onSurfaces = model.surfaces.empty() ? 0 : std::count(meetsSurfaces.begin(), meetsSurfaces.end(), true);
     if (colliding >= 2 || onSurfaces >= 1) {
       d.collision = std::make_shared<CollisionCache>(CollisionDetector(model, collides, meetsSurfaces));
-      d.collision->stepImpulse.assign(n, Vec3::Zero());
-      d.collision->stepAngularImpulse.assign(n, Vec3::Zero());
       for (size_t i = 0; i < model.bodies.size(); ++i) {
         const Shape& shape = model.bodies[i].shape;
         d.collision->halfThickness.push_back(meetsSurfaces[i] ? halfThickness(shape) : 0.0);
@@ -226,6 +224,15 @@ bool impactIn(StepContext& s, const std::vector<BodyState>& Y) {
   return bouncingImpact(s, Y);
 }
 
+// A solve's impulses on the bodies and the surfaces into the contact loads.
+void addImpulses(const ContactImpulses& impulses, WorldData::ContactLoads& loads) {
+  for (size_t i = 0; i < loads.impulse.size(); ++i) {
+    loads.impulse[i] += impulses.linear[i];
+    loads.angularImpulse[i] += impulses.angular[i];
+  }
+  for (const SurfacePush& p : impulses.pushes) loads.surfaceImpulse[p.surface] += p.impulse;
+}
+
 // After a step of `taken` is committed (a refused one adds nothing): its contact
 // impulses and the sleeping bodies' loads into WorldData::contactLoads, then the
 // islands that have come to rest fall asleep.
@@ -233,13 +240,8 @@ void addLoadsAndSleep(StepContext& s, double taken) {
   CollisionCache* c = s.data.collision.get();
   if (!c) return;
   StageTimer timer(s.data, Stage::Sleep);
-  WorldData::ContactLoads& loads = s.data.contactLoads;
-  for (size_t i = 0; i < loads.impulse.size(); ++i) {
-    loads.impulse[i] += c->stepImpulse[i];
-    loads.angularImpulse[i] += c->stepAngularImpulse[i];
-  }
-  for (const SurfacePush& p : c->pushes) loads.surfaceImpulse[p.surface] += p.impulse;
-  loads.duration += taken;
+  addImpulses(c->impulses, s.data.contactLoads);
+  s.data.contactLoads.duration += taken;
   addRestingLoads(s.data, taken);
   updateSleep(s.model, s.data, taken, *c);
 }
@@ -357,8 +359,8 @@ double speculativeMargin(const StepContext& s, const std::vector<BodyState>& Y) 
 }
 
 // The integrator's free motion of every awake body over tau, then the constraint
-// solver's motion of the bodies that the step's contacts
-// join (constraint_solver.h), from the state and contact memory of the step's start.
+// solver's motion of the bodies that the step's contacts join (constraint_solver.h),
+// from the state and contact memory of the step's start.
 // Returns the integrator's steps (0: the adaptive method failed its tolerance).
 int moveBodies(StepContext& s, CollisionCache& c, double tau, std::vector<BodyState>& next) {
   const int steps = advance(s.model, s.data, tau, next);
@@ -367,9 +369,8 @@ int moveBodies(StepContext& s, CollisionCache& c, double tau, std::vector<BodySt
   const SleepState& sleep = s.data.sleep;
   for (size_t i = 0; i < s.data.contacts.size(); ++i)
     if (!sleep.asleep[i]) s.data.contacts[i] = 0;  // a sleeping body keeps its count
-  const ConstraintReport report =
-      solveConstraints(s.model, s.data, c.stepContacts, tau, s.model.maxStep, s.data.contactMemory, c.storedMemory,
-                       next, s.data.contacts, c.constraints, c.impulses);
+  const ConstraintReport report = solveConstraints(s.model, s.data, c.stepContacts, tau, s.data.contactMemory,
+                                                   c.storedMemory, next, s.data.contacts, c.constraints, c.impulses);
   if (s.data.profiling) {
     ++s.data.profile.solves;
     s.data.profile.points += report.points;
@@ -379,9 +380,10 @@ int moveBodies(StepContext& s, CollisionCache& c, double tau, std::vector<BodySt
 
 // The instant of the first impact within (0, tau], by bisection on trial steps from
 // the step's start (the integrator, then the constraint solver) to 1e-15 of the step:
-// the bounce then happens where and when it should, whatever the step size. An impact that no positive instant
-// precedes is the step start's, which the solver's impacts stage answers: the step is
-// then taken whole (a step of length 0 has no motion to solve).
+// the bounce then happens where and when it should, whatever the step size. An impact
+// that no positive instant precedes is the step start's, which the solver's impacts
+// stage answers: the step is then taken whole (a step of length 0 has no motion to
+// solve).
 double locateImpact(StepContext& s, CollisionCache& c, double tau, std::vector<BodyState>& next) {
   double lo = 0.0, hi = tau;
   while (hi - lo > 1e-15 * tau) {
@@ -403,12 +405,7 @@ StepResult answerLocatedImpact(StepContext& s, CollisionCache& c) {
   next = s.data.Y;
   answerImpactsNow(s.model, s.data, c.contacts, s.h, next, c.constraints, c.impulses);
   if (const StepResult r = commit(s.model, s.data, next, s.h); !r.ok) return r;
-  WorldData::ContactLoads& loads = s.data.contactLoads;
-  for (size_t i = 0; i < loads.impulse.size(); ++i) {
-    loads.impulse[i] += c.impulses.linear[i];
-    loads.angularImpulse[i] += c.impulses.angular[i];
-  }
-  for (const SurfacePush& p : c.impulses.pushes) loads.surfaceImpulse[p.surface] += p.impulse;
+  addImpulses(c.impulses, s.data.contactLoads);
   return {};
 }
 
@@ -444,9 +441,6 @@ StepResult commitStep(StepContext& s, CollisionCache& c, int steps, std::vector<
   mergeBackSleeping(s.data.contactMemory, c);
   if (steps == 0) return failed(-1);
   if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);
-  c.stepImpulse = c.impulses.linear;
-  c.stepAngularImpulse = c.impulses.angular;
-  c.pushes = c.impulses.pushes;
   return commit(s.model, s.data, next, s.h);
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <utility>
 
 #include "dynamics.h"
@@ -224,7 +225,7 @@ fmi2Status Instance::write(const Variable& v, double value) {
   // at the next step by itself).
   if (!setupPhase()) {
     rigid::refreshAuxiliaries(model_, data_);
-    if (v.causality == Causality::Parameter) rigid::wakeAll(data_.sleep);
+    if (v.causality == Causality::Parameter) rigid::wakeAll(data_.sleep, data_.contactMemory);
   }
   return fmi2OK;
 }
@@ -569,7 +570,9 @@ fmi2Status Instance::getOutputDerivatives(const fmi2ValueReference vr[], size_t 
   // dY/dt at the current state and inputs: the same force stage as the integrators.
   std::vector<rigid::BodyAux> aux(data_.Y.size());
   std::vector<rigid::BodyDerivative> dY(data_.Y.size());
-  rigid::evaluateDerivative(model_, data_.input, data_.Y, aux, dY);
+  std::vector<int> every(data_.Y.size());
+  std::iota(every.begin(), every.end(), 0);
+  rigid::evaluateDerivative(model_, every, data_.input, data_.Y, aux, dY);
   for (size_t i = 0; i < n; ++i) {
     const Variable* v = lookup(called("fmi2GetRealOutputDerivatives"), vr[i], false);
     if (!v) return fmi2Error;

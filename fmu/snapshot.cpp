@@ -65,6 +65,11 @@ std::string readContactMemory(Reader& r, Snapshot& out, bool& ok) {
       return "the serialized state is corrupt (a contact point names no body or surface of this scene)";
     m.a = a, m.b = b, m.surface = surface;
   }
+  // the sleeping bodies' points are kept apart while they sleep (sleep_state.h)
+  out.data.sleep.memory.clear();
+  rigid::movePoints(out.data.contactMemory, out.data.sleep.memory, [&](const rigid::ContactMemory& m) {
+    return out.data.sleep.asleep[static_cast<size_t>(m.a)] != 0;
+  });
   return "";
 }
 
@@ -183,6 +188,7 @@ std::string readBodyStates(Reader& r, Snapshot& out, uint32_t n, bool& ok) {
     out.data.sleep.island[i] = island;
   }
   out.data.sleep.sleeping = static_cast<int>(std::count(out.data.sleep.asleep.begin(), out.data.sleep.asleep.end(), 1));
+  out.data.sleep.boxes.reset();  // derived from the flags and poses just read
   return "";
 }
 
@@ -238,11 +244,14 @@ std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
   w.put(static_cast<int64_t>(s.data.steps));
   w.put(s.data.errorEstimate);
   w.put(s.data.scratch.adaptiveStep);
-  w.put(static_cast<uint32_t>(s.data.contactMemory.size()));
-  for (const rigid::ContactMemory& m : s.data.contactMemory) {
-    w.put(static_cast<int32_t>(m.a)), w.put(static_cast<int32_t>(m.b)), w.put(static_cast<int32_t>(m.surface));
-    w.put(m.localA), w.put(m.normalImpulse), w.put(m.tangentImpulse), w.put(m.twistImpulse),
-        w.put(static_cast<uint8_t>(m.sliding));
+  // the awake bodies' contact memory, then the sleeping ones' (readContactMemory parts them)
+  w.put(static_cast<uint32_t>(s.data.contactMemory.size() + s.data.sleep.memory.size()));
+  for (const auto* memory : {&s.data.contactMemory, &s.data.sleep.memory}) {
+    for (const rigid::ContactMemory& m : *memory) {
+      w.put(static_cast<int32_t>(m.a)), w.put(static_cast<int32_t>(m.b)), w.put(static_cast<int32_t>(m.surface));
+      w.put(m.localA), w.put(m.normalImpulse), w.put(m.tangentImpulse), w.put(m.twistImpulse),
+          w.put(static_cast<uint8_t>(m.sliding));
+    }
   }
   return w.bytes;
 }

@@ -192,4 +192,59 @@ void SweepAndPrune::testLarge(const std::vector<Vec3>& lo, const std::vector<Vec
   }
 }
 
+bool FixedBoxes::Entry::operator<(const Entry& o) const {
+  return std::tie(x, y, z, box) < std::tie(o.x, o.y, o.z, o.box);
+}
+
+FixedBoxes::FixedBoxes(const std::vector<int>& ids, const std::vector<Vec3>& lo, const std::vector<Vec3>& hi)
+    : ids_(ids), lo_(lo), hi_(hi) {
+  const int n = static_cast<int>(ids.size());
+  if (n == 0) return;
+  std::vector<double> width(n);
+  for (int k = 0; k < n; ++k) width[k] = (hi[k] - lo[k]).maxCoeff();
+  std::vector<double> sorted = width;
+  std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
+  const double limit = kLargeOverMedian * sorted[n / 2];
+  double widest = 1e-9;
+  for (int k = 0; k < n; ++k)
+    if (width[k] <= limit) widest = std::max(widest, width[k]);
+  cell_ = widest;
+  for (int k = 0; k < n; ++k) {
+    if (width[k] > limit) {
+      large_.push_back(k);
+      continue;
+    }
+    grid_.push_back(Entry{cellOf(lo[k].x(), cell_), cellOf(lo[k].y(), cell_), cellOf(lo[k].z(), cell_), k});
+  }
+  std::sort(grid_.begin(), grid_.end());
+}
+
+inline void FixedBoxes::test(int box, const Vec3& lo, const Vec3& hi, std::vector<int>& out) const {
+  if ((lo_[box].array() <= hi.array()).all() && (lo.array() <= hi_[box].array()).all()) out.push_back(ids_[box]);
+}
+
+void FixedBoxes::overlapping(const Vec3& lo, const Vec3& hi, std::vector<int>& out) const {
+  for (int box : large_) test(box, lo, hi, out);
+  if (grid_.empty()) return;
+  long long first[3], last[3];
+  double cells = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    first[a] = cellOf(lo[a] - cell_, cell_);
+    last[a] = cellOf(hi[a], cell_);
+    cells *= static_cast<double>(last[a] - first[a] + 1);
+  }
+  // a query wider than the grid's boxes many times over reads them all instead
+  if (cells > static_cast<double>(grid_.size())) {
+    for (const Entry& e : grid_) test(e.box, lo, hi, out);
+    return;
+  }
+  for (long long x = first[0]; x <= last[0]; ++x) {
+    for (long long y = first[1]; y <= last[1]; ++y) {
+      // the cells (x, y, first[2] .. last[2]) lie together in the sorted grid
+      auto it = std::lower_bound(grid_.begin(), grid_.end(), Entry{x, y, first[2], -1});
+      for (; it != grid_.end() && it->x == x && it->y == y && it->z <= last[2]; ++it) test(it->box, lo, hi, out);
+    }
+  }
+}
+
 }  // namespace rigid

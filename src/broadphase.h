@@ -57,4 +57,33 @@ class SweepAndPrune {
   std::vector<double> sorted_[6];
 };
 
+// Boxes that do not move (the sleeping bodies'), asked which of them a moving box
+// overlaps: Box2D keeps sleeping bodies' proxies in its tree and only moving proxies
+// query it; this is that, in a hash grid. Each box sits in the cell of its lower corner
+// (cells as wide as the widest box), so a query visits the cells from its lower corner
+// less one cell to its upper corner. Boxes wider than four median boxes are kept apart
+// and tested by every query. Built once when the set changes (an island falls asleep or
+// wakes); a query costs the boxes near it, whatever the number asleep elsewhere.
+class FixedBoxes {
+ public:
+  // The boxes [lo[k], hi[k]] named ids[k].
+  FixedBoxes(const std::vector<int>& ids, const std::vector<Vec3>& lo, const std::vector<Vec3>& hi);
+  // Appends to out the ids of the boxes that overlap [lo, hi] (touching counts).
+  void overlapping(const Vec3& lo, const Vec3& hi, std::vector<int>& out) const;
+
+ private:
+  struct Entry {
+    long long x, y, z;  // the cell of the box's lower corner
+    int box;
+    bool operator<(const Entry& o) const;
+  };
+  void test(int box, const Vec3& lo, const Vec3& hi, std::vector<int>& out) const;
+
+  double cell_ = 1.0;
+  std::vector<int> ids_;
+  std::vector<Vec3> lo_, hi_;
+  std::vector<Entry> grid_;  // sorted by cell
+  std::vector<int> large_;   // boxes out of the grid
+};
+
 }  // namespace rigid

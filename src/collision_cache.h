@@ -8,6 +8,7 @@
 #include "collision_detection.h"
 #include "constraint_solver.h"
 #include "contact_memory.h"
+#include "islands.h"
 
 namespace rigid {
 
@@ -25,11 +26,9 @@ struct CollisionCache {
   ConstraintScratchPtr constraints;
   std::vector<ContactMemory> storedMemory;
   ContactImpulses impulses;
-  // sleep.cpp's buffers: islands (union-find), which rest on a surface and which are
-  // still long enough; the contact memory of sleeping bodies set aside during a solve
-  std::vector<int> island;
-  std::vector<char> grounded, ready;
-  std::vector<ContactMemory> sleepingMemory, mergedMemory;
+  // the step's islands (islands.h), and which of them are still long enough (sleep.cpp)
+  Islands islands;
+  std::vector<char> ready;
 };
 
 }  // namespace rigid

@@ -532,7 +532,9 @@ struct CollisionDetector::Impl {
   // separating-axis test, so FCL's objects are placed only when a pair reaches FCL.
   std::vector<char> placed;
   SweepAndPrune broadphase;
-  std::vector<Vec3> lo, hi;                      // scratch of detect(): each slot's bounding box
+  std::vector<int> active;                       // scratch of detect(): the slots in the sweep (all but sleepers)
+  std::vector<Vec3> lo, hi;                      // scratch of detect(): each active slot's bounding box
+  std::vector<int> hits;                         // scratch of detect(): sleepers near an awake body
   std::vector<std::pair<int, int>> overlapping;  // scratch of detect(): slots whose boxes overlap
   std::vector<Pair> pairs;                       // scratch of detect()
   std::vector<Pair> found;                       // scratch of detect(): pairs in the sweep's order
@@ -543,6 +545,10 @@ struct CollisionDetector::Impl {
   fcl::DistanceResultd distanceResult;
 
   bool isBody(int slot) const { return slot < nBodySlots; }
+
+  Vec3 pose(int slot, const std::vector<BodyState>& Y);
+  void pairWithSleepers(const Sleepers& sleepers, const std::vector<BodyState>& Y, const Vec3& grow);
+  void sortPairs();
 
   // The FCL object of a slot, at this step's pose.
   fcl::CollisionObjectd* object(int slot) {
@@ -632,8 +638,9 @@ CollisionDetector::CollisionDetector(const WorldModel& model, const std::vector<
     d.objects.push_back(std::move(obj));
   }
   d.placed.assign(d.geo.size(), true);  // surfaces never move; bodies are placed at their first pair
-  d.lo.resize(d.geo.size());
-  d.hi.resize(d.geo.size());
+  d.active.reserve(d.geo.size());
+  d.lo.reserve(d.geo.size());
+  d.hi.reserve(d.geo.size());
   d.pairs.reserve(4 * d.geo.size());
   d.boxContacts.reserve(8);
 
@@ -648,58 +655,104 @@ CollisionDetector::~CollisionDetector() = default;
 CollisionDetector::CollisionDetector(CollisionDetector&&) noexcept = default;
 CollisionDetector& CollisionDetector::operator=(CollisionDetector&&) noexcept = default;
 
+// The pose of a slot's body in Y, and its tight bounding box's half extents.
+Vec3 CollisionDetector::Impl::pose(int slot, const std::vector<BodyState>& Y) {
+  Geo& g = geo[slot];
+  const BodyState& y = Y[slotIndex[slot]];
+  g.R = y.q.normalized().toRotationMatrix();
+  g.p = y.X;
+  placed[slot] = false;
+  return aabbHalfExtent(g);
+}
+
+std::shared_ptr<const FixedBoxes> CollisionDetector::fixedBoxes(const std::vector<BodyState>& Y,
+                                                                const std::vector<char>& asleep) {
+  Impl& d = *impl_;
+  std::vector<int> slots;
+  std::vector<Vec3> lo, hi;
+  for (int slot = 0; slot < d.nBodySlots; ++slot) {
+    if (!asleep[d.slotIndex[slot]]) continue;
+    const Vec3 half = d.pose(slot, Y);
+    slots.push_back(slot);
+    lo.push_back(d.geo[slot].p - half);
+    hi.push_back(d.geo[slot].p + half);
+  }
+  return std::make_shared<const FixedBoxes>(slots, lo, hi);
+}
+
 void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, std::vector<Contact>& out,
-                               StepProfile* profile, double speculative, const std::vector<char>* asleep) {
+                               StepProfile* profile, double speculative, const Sleepers* sleepers) {
   Impl& d = *impl_;
   const auto start = profile ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   if (Y.size() != d.bodySlot.size())
     throw std::invalid_argument("CollisionDetector::detect: " + std::to_string(Y.size()) + " states for " +
                                 std::to_string(d.bodySlot.size()) + " bodies");
-  if (asleep && asleep->size() != d.bodySlot.size())
-    throw std::invalid_argument("CollisionDetector::detect: " + std::to_string(asleep->size()) + " sleep flags for " +
-                                std::to_string(d.bodySlot.size()) + " bodies");
+  if (sleepers && sleepers->asleep.size() != d.bodySlot.size())
+    throw std::invalid_argument("CollisionDetector::detect: " + std::to_string(sleepers->asleep.size()) +
+                                " sleep flags for " + std::to_string(d.bodySlot.size()) + " bodies");
   margin = std::max(margin, 0.0);
   speculative = std::max(speculative, margin);
   out.clear();
-  // Transforms and bounding boxes: each shape's tight axis-aligned box, grown by half
-  // the speculative distance, so that two shapes closer than it are candidates.
+  // The slots that move (awake bodies) and the surfaces: each shape's tight axis-aligned
+  // box, grown by half the speculative distance, so that two shapes closer than it are
+  // candidates. Sleeping bodies keep their boxes in `sleepers` and are only asked for.
   const Vec3 grow = Vec3::Constant(0.5 * speculative);
-  for (int slot = 0; slot < static_cast<int>(d.geo.size()); ++slot) {
-    Geo& g = d.geo[slot];
-    Vec3 half;
-    if (d.isBody(slot)) {
-      const BodyState& y = Y[d.slotIndex[slot]];
-      g.R = y.q.normalized().toRotationMatrix();
-      g.p = y.X;
-      d.placed[slot] = false;
-      half = aabbHalfExtent(g);
-    } else {
-      half = d.surfaceHalfAabb[d.slotIndex[slot]];
-    }
-    d.lo[slot] = g.p - half - grow;
-    d.hi[slot] = g.p + half + grow;
+  d.active.clear();
+  for (int slot = 0; slot < static_cast<int>(d.geo.size()); ++slot)
+    if (!d.isBody(slot) || !sleepers || !sleepers->asleep[d.slotIndex[slot]]) d.active.push_back(slot);
+  const int nActive = static_cast<int>(d.active.size());
+  d.lo.resize(nActive);
+  d.hi.resize(nActive);
+  for (int k = 0; k < nActive; ++k) {
+    const int slot = d.active[k];
+    const Vec3 half = d.isBody(slot) ? d.pose(slot, Y) : d.surfaceHalfAabb[d.slotIndex[slot]];
+    d.lo[k] = d.geo[slot].p - half - grow;
+    d.hi[k] = d.geo[slot].p + half + grow;
   }
   d.broadphase.overlaps(d.lo, d.hi, d.overlapping);
-  // Pairs in one order whatever the sweep's history (a restored FMU state has none):
-  // the response's passes, and so its results, follow it. Counting sort by body, then
-  // each body's few pairs by partner.
   d.found.clear();
-  auto sleeping = [&](int body) { return asleep && body >= 0 && (*asleep)[body]; };
-  for (const auto& [s1, s2] : d.overlapping)
-    if (Impl::Pair p; d.candidate(s1, s2, p) && !(sleeping(p.a) && (p.b < 0 || sleeping(p.b)))) d.found.push_back(p);
-  d.firstOf.assign(d.bodySlot.size() + 1, 0);
-  for (const Impl::Pair& p : d.found) ++d.firstOf[p.a + 1];
-  for (size_t b = 1; b < d.firstOf.size(); ++b) d.firstOf[b] += d.firstOf[b - 1];
-  d.pairs.resize(d.found.size());
-  for (const Impl::Pair& p : d.found) d.pairs[d.firstOf[p.a]++] = p;  // firstOf[a]: now where a's pairs end
-  for (size_t b = 0, begin = 0; b < d.bodySlot.size(); begin = d.firstOf[b++])
-    std::sort(d.pairs.begin() + begin, d.pairs.begin() + d.firstOf[b]);
+  for (const auto& [k1, k2] : d.overlapping)
+    if (Impl::Pair p; d.candidate(d.active[k1], d.active[k2], p)) d.found.push_back(p);
+  if (sleepers) d.pairWithSleepers(*sleepers, Y, grow);
+  d.sortPairs();
   const auto broad = profile ? std::chrono::steady_clock::now() : start;
   for (const Impl::Pair& p : d.pairs) d.narrowphase(p, margin, speculative, out);
   if (profile) {
     profile->broadphase += std::chrono::duration<double, std::nano>(broad - start).count();
     profile->narrowphase += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - broad).count();
+    profile->boxes += nActive - static_cast<int>(d.surfaceHalfAabb.size());
   }
+}
+
+// The awake bodies' pairs with sleeping ones: each awake body that meets bodies asks
+// the sleepers' boxes for those within the speculative distance of its own.
+void CollisionDetector::Impl::pairWithSleepers(const Sleepers& sleepers, const std::vector<BodyState>& Y,
+                                               const Vec3& grow) {
+  for (int k = 0; k < static_cast<int>(active.size()); ++k) {
+    const int slot = active[k];
+    if (!isBody(slot) || !meetsBodies[slot]) continue;
+    hits.clear();
+    sleepers.boxes.overlapping(lo[k] - grow, hi[k] + grow, hits);
+    for (int other : hits) {
+      if (Pair p; candidate(slot, other, p)) {
+        pose(other, Y);
+        found.push_back(p);
+      }
+    }
+  }
+}
+
+// Pairs in one order whatever the sweep's history (a restored FMU state has none): the
+// response's passes, and so its results, follow it. Counting sort by body, then each
+// body's few pairs by partner.
+void CollisionDetector::Impl::sortPairs() {
+  firstOf.assign(bodySlot.size() + 1, 0);
+  for (const Pair& p : found) ++firstOf[p.a + 1];
+  for (size_t b = 1; b < firstOf.size(); ++b) firstOf[b] += firstOf[b - 1];
+  pairs.resize(found.size());
+  for (const Pair& p : found) pairs[firstOf[p.a]++] = p;  // firstOf[a]: now where a's pairs end
+  for (size_t b = 0, begin = 0; b < bodySlot.size(); begin = firstOf[b++])
+    std::sort(pairs.begin() + begin, pairs.begin() + firstOf[b]);
 }
 
 void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, double speculative,

@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "broadphase.h"
 #include "world.h"  // WorldModel (bodies, surfaces), BodyState
 
 namespace rigid {
@@ -42,6 +43,12 @@ struct Coefficients {
 };
 Coefficients coefficientsOf(const WorldModel& model, const Contact& c);
 
+// The sleeping bodies as detect() sees them: a flag per body, and their boxes.
+struct Sleepers {
+  const std::vector<char>& asleep;
+  const FixedBoxes& boxes;
+};
+
 // Collision detection of one world instance: FCL geometry for every body that
 // collides and every surface (a box, turned about its centre), and one broadphase
 // (its kept sort order) per instance. No global state: many detectors run side by
@@ -72,10 +79,14 @@ class CollisionDetector {
   // reported too, for the position correction to know what its moves could push into:
   // box pairs as ONE contact along their separating axis with depth = -(the gap along
   // it, a lower bound of their distance), other pairs as with the margin.
-  // `asleep` (per body, or null): pairs of two sleeping bodies and of a sleeping body
-  // with a surface are skipped (sleep.h); a sleeping body's pairs with awake ones are not.
+  // `sleepers` (or null): the sleeping bodies (sleep.h) are not in the sweep; only their
+  // pairs with awake bodies are found, by asking their boxes (fixedBoxes(), built at
+  // the poses they sleep in, which Y holds too).
   void detect(const std::vector<BodyState>& Y, double margin, std::vector<Contact>& out, StepProfile* profile = nullptr,
-              double speculative = 0.0, const std::vector<char>* asleep = nullptr);
+              double speculative = 0.0, const Sleepers* sleepers = nullptr);
+
+  // The bounding boxes of the bodies asleep (per body) at their poses in Y, for detect().
+  std::shared_ptr<const FixedBoxes> fixedBoxes(const std::vector<BodyState>& Y, const std::vector<char>& asleep);
 
  private:
   struct Impl;

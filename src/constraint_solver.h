@@ -60,9 +60,16 @@ struct SurfacePush {
 
 // What the solver gave the bodies over a step: each body's contact impulse and its
 // moment about the centre of mass (N s, N m s, world frame), and the surfaces' pushes.
+// A step's contact impulses: per body (N s, N m s about the centre of mass; both empty
+// when the step had no contacts) and on the surfaces.
 struct ContactImpulses {
   std::vector<Vec3> linear, angular;
   std::vector<SurfacePush> pushes;
+  void clear() {
+    linear.clear();
+    angular.clear();
+    pushes.clear();
+  }
 };
 
 // Moves the bodies that `contacts` (detected at data.Y, the step's start, with a

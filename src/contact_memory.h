@@ -4,7 +4,10 @@
 // state saved and restored carries it, and a restored run continues bitwise.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <tuple>
+#include <vector>
 
 #include "math_types.h"
 
@@ -27,6 +30,21 @@ struct ContactMemory {
 // the contacts and the contact memory keep.
 inline std::tuple<int, int, int> pairKey(int a, int b, int surface) {
   return std::make_tuple(a, b < 0 ? 1 : 0, b >= 0 ? b : surface);
+}
+
+// Moves the points of `from` for which `moves(point)` holds into `into`, both kept in
+// pair order (each pair's points lie wholly in one of them).
+template <class Moves>
+void movePoints(std::vector<ContactMemory>& from, std::vector<ContactMemory>& into, Moves moves) {
+  const auto kept = std::stable_partition(from.begin(), from.end(), [&](const ContactMemory& m) { return !moves(m); });
+  if (kept == from.end()) return;
+  const auto middle = static_cast<std::ptrdiff_t>(into.size());
+  into.insert(into.end(), kept, from.end());
+  from.erase(kept, from.end());
+  std::inplace_merge(into.begin(), into.begin() + middle, into.end(),
+                     [](const ContactMemory& x, const ContactMemory& y) {
+                       return pairKey(x.a, x.b, x.surface) < pairKey(y.a, y.b, y.surface);
+                     });
 }
 
 }  // namespace rigid

@@ -41,9 +41,9 @@ void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body, 
   dy.dL = aux.T;
 }
 
-void evaluateDerivative(const WorldModel& model, const std::vector<BodyInput>& input, const std::vector<BodyState>& Y,
-                        std::vector<BodyAux>& aux, std::vector<BodyDerivative>& dY) {
-  for (size_t i = 0; i < Y.size(); ++i) evaluateBodyDerivative(model, model.bodies[i], input[i], Y[i], aux[i], dY[i]);
+void evaluateDerivative(const WorldModel& model, const std::vector<int>& bodies, const std::vector<BodyInput>& input,
+                        const std::vector<BodyState>& Y, std::vector<BodyAux>& aux, std::vector<BodyDerivative>& dY) {
+  for (int i : bodies) evaluateBodyDerivative(model, model.bodies[i], input[i], Y[i], aux[i], dY[i]);
 }
 
 }  // namespace rigid

@@ -35,9 +35,9 @@ void accumulateAppliedForces(const WorldModel& model, const BodyConstants& body,
 void evaluateBodyDerivative(const WorldModel& model, const BodyConstants& body, const BodyInput& input,
                             const BodyState& y, BodyAux& aux, BodyDerivative& dy);
 
-// For every body: auxiliaries of Y, the accumulated force and torque, and
+// For every listed body: auxiliaries of Y, the accumulated force and torque, and
 // dY/dt = (V, 1/2 omega q, F, T). aux is filled as a by-product.
-void evaluateDerivative(const WorldModel& model, const std::vector<BodyInput>& input, const std::vector<BodyState>& Y,
-                        std::vector<BodyAux>& aux, std::vector<BodyDerivative>& dY);
+void evaluateDerivative(const WorldModel& model, const std::vector<int>& bodies, const std::vector<BodyInput>& input,
+                        const std::vector<BodyState>& Y, std::vector<BodyAux>& aux, std::vector<BodyDerivative>& dY);
 
 }  // namespace rigid

@@ -14,9 +14,9 @@ namespace rigid {
 namespace {
 
 // out = y + h * k, body by body.
-void addScaled(const std::vector<BodyState>& y, double h, const std::vector<BodyDerivative>& k,
-               std::vector<BodyState>& out) {
-  for (size_t i = 0; i < y.size(); ++i) {
+void addScaled(const std::vector<int>& bodies, const std::vector<BodyState>& y, double h,
+               const std::vector<BodyDerivative>& k, std::vector<BodyState>& out) {
+  for (int i : bodies) {
     out[i].X = y[i].X + h * k[i].dX;
     out[i].q.coeffs() = y[i].q.coeffs() + h * k[i].dq;
     out[i].P = y[i].P + h * k[i].dP;
@@ -24,10 +24,11 @@ void addScaled(const std::vector<BodyState>& y, double h, const std::vector<Body
   }
 }
 
-void eulerStep(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
+void eulerStep(const WorldModel& m, WorldData& d, const std::vector<int>& bodies, double h,
+               std::vector<BodyState>& next) {
   std::vector<BodyDerivative>& k1 = d.scratch.k[0];
-  evaluateDerivative(m, d.input, d.Y, d.aux, k1);
-  addScaled(d.Y, h, k1, next);
+  evaluateDerivative(m, bodies, d.input, d.Y, d.aux, k1);
+  addScaled(bodies, d.Y, h, k1, next);
 }
 
 // dq/dt = 1/2 q (0, omega_body) with omega_body = Ibody^-1 R^T L, for q of any norm.
@@ -138,13 +139,13 @@ void rk4Bodies(const WorldModel& m, WorldData& d, double h, const std::vector<in
 
 // Bodies whose forces are held over the step (forcesHeldOverStep: no medium) take the
 // packed kernel; the others the classic stages.
-void rk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
+void rk4Step(const WorldModel& m, WorldData& d, const std::vector<int>& bodies, double h,
+             std::vector<BodyState>& next) {
   std::vector<int>& held = d.scratch.held;
   std::vector<int>& felt = d.scratch.felt;
-  const int n = static_cast<int>(d.Y.size());
   held.clear();
   felt.clear();
-  for (int i = 0; i < n; ++i) (forcesHeldOverStep(m, m.bodies[i]) ? held : felt).push_back(i);
+  for (int i : bodies) (forcesHeldOverStep(m, m.bodies[i]) ? held : felt).push_back(i);
   if (!held.empty()) rk4HeldForcesStep(m, d, h, held, next);
   if (!felt.empty()) rk4Bodies(m, d, h, felt, next);
 }
@@ -175,10 +176,11 @@ Quat freeRotation(const BodyConstants& body, const Quat& q, const Vec3& L, doubl
 // torque-free body's energy then grows by ~(h |omega|)^2 a step and a needle-like
 // body blows up (scripts/stress.sh). The splitting drift keeps |L| exactly and the
 // energy bounded; with forces the method stays first order.
-void symplecticEulerStep(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
+void symplecticEulerStep(const WorldModel& m, WorldData& d, const std::vector<int>& bodies, double h,
+                         std::vector<BodyState>& next) {
   std::vector<BodyDerivative>& k1 = d.scratch.k[0];
-  evaluateDerivative(m, d.input, d.Y, d.aux, k1);
-  for (size_t i = 0; i < d.Y.size(); ++i) {
+  evaluateDerivative(m, bodies, d.input, d.Y, d.aux, k1);
+  for (int i : bodies) {
     const BodyState& y = d.Y[i];
     BodyState& out = next[i];
     out.P = y.P + h * k1[i].dP;
@@ -193,11 +195,12 @@ void symplecticEulerStep(const WorldModel& m, WorldData& d, double h, std::vecto
 // Forces that depend on velocity (drag) are evaluated at the end with the momenta
 // predicted to the end of the step (P + h F), not the half-kicked ones, which would
 // cost the method its second order.
-void splittingStep(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
+void splittingStep(const WorldModel& m, WorldData& d, const std::vector<int>& bodies, double h,
+                   std::vector<BodyState>& next) {
   std::vector<BodyDerivative>& k = d.scratch.k[0];
   std::vector<BodyState>& end = d.scratch.stage;
-  evaluateDerivative(m, d.input, d.Y, d.aux, k);
-  for (size_t i = 0; i < d.Y.size(); ++i) {
+  evaluateDerivative(m, bodies, d.input, d.Y, d.aux, k);
+  for (int i : bodies) {
     const BodyState& y = d.Y[i];
     BodyState& out = next[i];
     out.P = y.P + 0.5 * h * k[i].dP;
@@ -208,8 +211,8 @@ void splittingStep(const WorldModel& m, WorldData& d, double h, std::vector<Body
     end[i].P = y.P + h * k[i].dP;
     end[i].L = y.L + h * k[i].dL;
   }
-  evaluateDerivative(m, d.input, end, d.aux, k);
-  for (size_t i = 0; i < d.Y.size(); ++i) {
+  evaluateDerivative(m, bodies, d.input, end, d.aux, k);
+  for (int i : bodies) {
     next[i].P += 0.5 * h * k[i].dP;
     next[i].L += 0.5 * h * k[i].dL;
   }
@@ -221,7 +224,8 @@ Vec3 dexpInverse(const Vec3& u, const Vec3& v) { return v - 0.5 * u.cross(v) + (
 // Runge-Kutta-Munthe-Kaas 4: the classic tableau applied to the rotation vector of
 // q = exp(Theta) q0 (world frame) and to X, P, L; q moves only by exponentials, so it
 // is unit by construction.
-void lieRk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
+void lieRk4Step(const WorldModel& m, WorldData& d, const std::vector<int>& bodies, double h,
+                std::vector<BodyState>& next) {
   // Each stage's rotation increment h dexp^-1(u, omega) is kept in its dq.head<3>().
   std::vector<BodyDerivative>* ks[4] = {&d.scratch.k[0], &d.scratch.k[1], &d.scratch.k[2], &d.scratch.k[3]};
   std::vector<BodyDerivative>& k1 = *ks[0];
@@ -230,17 +234,16 @@ void lieRk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodySta
   std::vector<BodyDerivative>& k4 = *ks[3];
   std::vector<BodyState>& stage = d.scratch.stage;
   std::vector<Vec3>& theta = d.scratch.u;
-  const size_t n = d.Y.size();
   const double c[4] = {0.0, 0.5, 0.5, 1.0};
   for (int s = 0; s < 4; ++s) {
     std::vector<BodyDerivative>& k = *ks[s];
     if (s == 0) {
-      evaluateDerivative(m, d.input, d.Y, d.aux, k);
-      for (size_t i = 0; i < n; ++i) k[i].dq.head<3>() = h * d.aux[i].omega;
+      evaluateDerivative(m, bodies, d.input, d.Y, d.aux, k);
+      for (int i : bodies) k[i].dq.head<3>() = h * d.aux[i].omega;
       continue;
     }
     const std::vector<BodyDerivative>& prev = *ks[s - 1];
-    for (size_t i = 0; i < n; ++i) {
+    for (int i : bodies) {
       const BodyState& y = d.Y[i];
       const Vec3 u = c[s] * Vec3(prev[i].dq.head<3>());
       theta[i] = u;
@@ -249,11 +252,11 @@ void lieRk4Step(const WorldModel& m, WorldData& d, double h, std::vector<BodySta
       stage[i].L = y.L + c[s] * h * prev[i].dL;
       stage[i].q = rotationQuaternion(u) * y.q;
     }
-    evaluateDerivative(m, d.input, stage, d.aux, k);
-    for (size_t i = 0; i < n; ++i) k[i].dq.head<3>() = h * dexpInverse(theta[i], d.aux[i].omega);
+    evaluateDerivative(m, bodies, d.input, stage, d.aux, k);
+    for (int i : bodies) k[i].dq.head<3>() = h * dexpInverse(theta[i], d.aux[i].omega);
   }
   const double w1 = h / 6.0, w2 = h / 3.0;
-  for (size_t i = 0; i < n; ++i) {
+  for (int i : bodies) {
     const BodyState& y = d.Y[i];
     BodyState& out = next[i];
     out.X = y.X + (w1 * k1[i].dX + w2 * k2[i].dX + w2 * k3[i].dX + w1 * k4[i].dX);
@@ -280,9 +283,9 @@ constexpr double kA[7][6] = {
 constexpr double kB4[7] = {5179.0 / 57600, 0.0, 7571.0 / 16695, 393.0 / 640, -92097.0 / 339200, 187.0 / 2100, 1.0 / 40};
 
 // out = y + h sum_j a[j] k[j], j < count.
-void combine(const std::vector<BodyState>& y, double h, const double* a, int count,
+void combine(const std::vector<int>& bodies, const std::vector<BodyState>& y, double h, const double* a, int count,
              const std::vector<BodyDerivative>* k, std::vector<BodyState>& out) {
-  for (size_t i = 0; i < y.size(); ++i) {
+  for (int i : bodies) {
     BodyState& o = out[i];
     o = y[i];
     for (int j = 0; j < count; ++j) {
@@ -298,29 +301,29 @@ void combine(const std::vector<BodyState>& y, double h, const double* a, int cou
 
 // One Dormand-Prince step from y: the 5th-order solution into y5, the 4th-order one
 // into y4 (the 7th stage is the derivative at y5, first-same-as-last).
-void dopri5Step(const WorldModel& m, WorldData& d, const std::vector<BodyState>& y, double h,
-                std::vector<BodyState>& y5, std::vector<BodyState>& y4) {
+void dopri5Step(const WorldModel& m, WorldData& d, const std::vector<int>& bodies, const std::vector<BodyState>& y,
+                double h, std::vector<BodyState>& y5, std::vector<BodyState>& y4) {
   std::vector<BodyDerivative>* k = d.scratch.k;
   std::vector<BodyState>& stage = d.scratch.stage;
-  evaluateDerivative(m, d.input, y, d.aux, k[0]);
+  evaluateDerivative(m, bodies, d.input, y, d.aux, k[0]);
   for (int s = 1; s < 7; ++s) {
-    combine(y, h, kA[s], s, k, stage);
-    evaluateDerivative(m, d.input, stage, d.aux, k[s]);
+    combine(bodies, y, h, kA[s], s, k, stage);
+    evaluateDerivative(m, bodies, d.input, stage, d.aux, k[s]);
   }
-  y5 = stage;  // the 7th stage is evaluated at the 5th-order solution
-  combine(y, h, kB4, 7, k, y4);
+  for (int i : bodies) y5[i] = stage[i];  // the 7th stage is evaluated at the 5th-order solution
+  combine(bodies, y, h, kB4, 7, k, y4);
 }
 
 // Error of a step, relative to the tolerance: max over components of
 // |y5 - y4| / (tol (1 + max(|y|, |y5|))), i.e. absolute and relative tolerance both tol.
-double scaledError(const std::vector<BodyState>& y, const std::vector<BodyState>& y5, const std::vector<BodyState>& y4,
-                   double tol) {
+double scaledError(const std::vector<int>& bodies, const std::vector<BodyState>& y, const std::vector<BodyState>& y5,
+                   const std::vector<BodyState>& y4, double tol) {
   double e = 0.0;
   auto part = [&](const auto& a, const auto& b, const auto& c) {
     const auto scale = (1.0 + a.cwiseAbs().cwiseMax(b.cwiseAbs()).array()) * tol;
     e = std::max(e, ((b - c).cwiseAbs().array() / scale).maxCoeff());
   };
-  for (size_t i = 0; i < y.size(); ++i) {
+  for (int i : bodies) {
     part(y[i].X, y5[i].X, y4[i].X);
     part(y[i].q.coeffs(), y5[i].q.coeffs(), y4[i].q.coeffs());
     part(y[i].P, y5[i].P, y4[i].P);
@@ -332,14 +335,15 @@ double scaledError(const std::vector<BodyState>& y, const std::vector<BodyState>
 // Adaptive Dormand-Prince over [0, h]: steps chosen by the standard controller
 // (safety 0.9, factor within [0.2, 5]) so that each local error estimate meets
 // solver.tolerance; the last step shortened to end at h. Tolerance 0: one fixed step.
-int dopri5Adaptive(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
+int dopri5Adaptive(const WorldModel& m, WorldData& d, const std::vector<int>& bodies, double h,
+                   std::vector<BodyState>& next) {
   Scratch& s = d.scratch;
   if (m.tolerance <= 0.0) {
-    dopri5Step(m, d, d.Y, h, next, s.y4);
+    dopri5Step(m, d, bodies, d.Y, h, next, s.y4);
     d.errorEstimate = 0.0;
     return 1;
   }
-  s.y = d.Y;
+  for (int i : bodies) s.y[i] = d.Y[i];
   double t = 0.0;
   double trial = s.adaptiveStep > 0.0 ? std::min(s.adaptiveStep, h) : h;
   double memory = s.adaptiveStep;  // the controller's step, not one shortened to end at h
@@ -347,8 +351,8 @@ int dopri5Adaptive(const WorldModel& m, WorldData& d, double h, std::vector<Body
   while (t < h) {
     const bool last = trial >= h - t;
     const double step = last ? h - t : trial;
-    dopri5Step(m, d, s.y, step, next, s.y4);
-    const double err = scaledError(s.y, next, s.y4, m.tolerance);
+    dopri5Step(m, d, bodies, s.y, step, next, s.y4);
+    const double err = scaledError(bodies, s.y, next, s.y4, m.tolerance);
     const double factor = err > 0.0 ? 0.9 * std::pow(err, -0.2) : 5.0;
     if (!(err <= 1.0)) {  // also when err is NaN
       trial = step * std::max(0.2, std::min(1.0, factor));
@@ -357,14 +361,14 @@ int dopri5Adaptive(const WorldModel& m, WorldData& d, double h, std::vector<Body
     }
     ++accepted;
     d.errorEstimate = err * m.tolerance;
-    for (BodyState& b : next) b.q.normalize();
+    for (int i : bodies) next[i].q.normalize();
     std::swap(s.y, next);
     t = last ? h : t + step;
     trial = step * std::min(5.0, std::max(0.2, factor));
     if (!last || memory <= 0.0) memory = trial;
   }
   s.adaptiveStep = memory;
-  next = s.y;
+  for (int i : bodies) next[i] = s.y[i];
   return accepted;
 }
 
@@ -407,9 +411,10 @@ Vec13 bodyRate(const WorldModel& m, size_t i, const BodyInput& in, const Vec13& 
   return pack(d);
 }
 
-void rosenbrockStep(const WorldModel& m, WorldData& d, double h, std::vector<BodyState>& next) {
+void rosenbrockStep(const WorldModel& m, WorldData& d, const std::vector<int>& bodies, double h,
+                    std::vector<BodyState>& next) {
   const double gamma = 1.0 + 1.0 / std::sqrt(2.0);
-  for (size_t i = 0; i < d.Y.size(); ++i) {
+  for (int i : bodies) {
     const BodyInput& in = d.input[i];
     const Vec13 y = pack(d.Y[i]);
     const Vec13 f0 = bodyRate(m, i, in, y, d.aux[i]);
@@ -444,15 +449,16 @@ Quat rotationQuaternion(const Vec3& theta) {
   return Quat(std::cos(half), s * theta.x(), s * theta.y(), s * theta.z());
 }
 
-int integrate(const WorldModel& model, WorldData& data, double h, std::vector<BodyState>& next) {
+int integrate(const WorldModel& model, WorldData& data, const std::vector<int>& bodies, double h,
+              std::vector<BodyState>& next) {
   switch (model.method) {
-    case Method::Euler: eulerStep(model, data, h, next); return 1;
-    case Method::RK4: rk4Step(model, data, h, next); return 1;
-    case Method::SymplecticEuler: symplecticEulerStep(model, data, h, next); return 1;
-    case Method::Splitting: splittingStep(model, data, h, next); return 1;
-    case Method::LieRK4: lieRk4Step(model, data, h, next); return 1;
-    case Method::Dopri5: return dopri5Adaptive(model, data, h, next);
-    case Method::Rosenbrock: rosenbrockStep(model, data, h, next); return 1;
+    case Method::Euler: eulerStep(model, data, bodies, h, next); return 1;
+    case Method::RK4: rk4Step(model, data, bodies, h, next); return 1;
+    case Method::SymplecticEuler: symplecticEulerStep(model, data, bodies, h, next); return 1;
+    case Method::Splitting: splittingStep(model, data, bodies, h, next); return 1;
+    case Method::LieRK4: lieRk4Step(model, data, bodies, h, next); return 1;
+    case Method::Dopri5: return dopri5Adaptive(model, data, bodies, h, next);
+    case Method::Rosenbrock: rosenbrockStep(model, data, bodies, h, next); return 1;
   }
   return 0;
 }

@@ -42,11 +42,13 @@ std::optional<Method> methodFromName(const std::string& name);
 std::optional<Method> methodFromValue(int value);
 const char* methodName(Method method);
 
-// Y(t + h) of every body into `next` (q not yet normalised). Reads data.Y and
-// data.input; uses data.scratch and data.aux as work space. Returns the number of
-// steps it took: 1, or the accepted steps of the adaptive method, which also sets
-// data.errorEstimate; 0 when the adaptive method cannot meet its tolerance.
-int integrate(const WorldModel& model, WorldData& data, double h, std::vector<BodyState>& next);
+// Y(t + h) of the listed bodies (ascending indices) into `next` (q not yet normalised);
+// the other bodies' entries are left as they are (sleeping bodies are not integrated).
+// Reads data.Y and data.input; uses data.scratch and data.aux as work space. Returns
+// the number of steps it took: 1, or the accepted steps of the adaptive method, which
+// also sets data.errorEstimate; 0 when the adaptive method cannot meet its tolerance.
+int integrate(const WorldModel& model, WorldData& data, const std::vector<int>& bodies, double h,
+              std::vector<BodyState>& next);
 
 // Unit quaternion of the rotation by the rotation vector theta (rad).
 Quat rotationQuaternion(const Vec3& theta);

@@ -1,7 +1,6 @@
 #include "sleep.h"
 
 #include <algorithm>
-#include <numeric>
 
 #include "islands.h"
 
@@ -10,8 +9,9 @@ namespace rigid {
 namespace {
 
 // A woken body must be still for the sleep time again before it sleeps: what woke it
-// (a touch, an input, a new parameter) may take a few steps to move it.
-void wakeIsland(SleepState& s, int island) {
+// (a touch, an input, a new parameter) may take a few steps to move it. Its contact
+// memory returns to `memory` (WorldData::contactMemory).
+void wakeIsland(SleepState& s, std::vector<ContactMemory>& memory, int island) {
   for (size_t i = 0; i < s.asleep.size(); ++i) {
     if (!s.asleep[i] || s.island[i] != island) continue;
     s.asleep[i] = 0;
@@ -19,9 +19,11 @@ void wakeIsland(SleepState& s, int island) {
     s.stillFor[i] = 0.0;
     --s.sleeping;
   }
+  s.boxes.reset();
   s.resting.erase(
       std::remove_if(s.resting.begin(), s.resting.end(), [&](const RestingPush& p) { return !s.asleep[p.body]; }),
       s.resting.end());
+  movePoints(s.memory, memory, [&](const ContactMemory& m) { return !s.asleep[m.a]; });
 }
 
 }  // namespace
@@ -31,7 +33,7 @@ bool wakeDriven(WorldData& data) {
   bool woke = false;
   for (size_t i = 0; i < s.asleep.size() && s.sleeping > 0; ++i) {
     if (!s.asleep[i] || !(drives(data.input[i]) || drives(data.inputRate[i]))) continue;
-    wakeIsland(s, s.island[i]);
+    wakeIsland(s, data.contactMemory, s.island[i]);
     woke = true;
   }
   return woke;
@@ -43,13 +45,14 @@ void holdSleepers(const SleepState& s, const std::vector<BodyState>& Y, std::vec
     if (s.asleep[i]) next[i] = Y[i];
 }
 
-bool wakeTouched(const std::vector<Contact>& contacts, SleepState& s) {
+bool wakeTouched(const std::vector<Contact>& contacts, WorldData& data) {
+  SleepState& s = data.sleep;
   if (s.sleeping == 0) return false;
   bool woke = false;
   for (const Contact& c : contacts) {
     for (int body : {c.a, c.b}) {
       if (body < 0 || !s.asleep[body]) continue;
-      wakeIsland(s, s.island[body]);
+      wakeIsland(s, data.contactMemory, s.island[body]);
       woke = true;
     }
   }
@@ -68,40 +71,32 @@ void addRestingLoads(WorldData& data, double tau) {
   for (const RestingPush& p : s.resting) loads.surfaceImpulse[p.surface] += tau * p.force;
 }
 
-void updateSleep(const WorldModel& model, WorldData& data, double h, CollisionCache& cache) {
-  if (!model.sleep.enabled) return;
+bool updateSleep(const WorldModel& model, WorldData& data, double h, CollisionCache& cache) {
   SleepState& s = data.sleep;
-  const int n = static_cast<int>(data.Y.size());
-  for (int i = 0; i < n; ++i) {
-    if (s.asleep[i]) continue;
+  for (int i : data.scratch.awake) {
     const double speed = data.aux[i].V.norm() + data.aux[i].omega.norm() * cache.boundingRadius[i];
     const bool still = speed < model.sleep.speed && !drives(data.input[i]) && !drives(data.inputRate[i]);
     s.stillFor[i] = still ? s.stillFor[i] + h : 0.0;
   }
-  // Islands of the awake bodies (a sleeping body has no contacts: the detector skips
-  // its pairs with sleeping bodies and surfaces, and any other one woke it).
-  const std::vector<Contact>& contacts = cache.contacts;
-  std::vector<int>& parent = cache.island;
-  parent.resize(n);
-  std::iota(parent.begin(), parent.end(), 0);
-  for (const Contact& c : contacts)
-    if (c.b >= 0) parent[islandRoot(parent, c.a)] = islandRoot(parent, c.b);
-  std::vector<char>& grounded = cache.grounded;
+  // An island sleeps whole, when it rests on a surface and all of it has been still
+  // long enough. (A sleeping body has no contacts: the detector skips its pairs with
+  // sleeping bodies and surfaces, and any other one woke it.)
+  const Islands& islands = cache.islands;
   std::vector<char>& ready = cache.ready;
-  grounded.assign(n, 0);
-  ready.assign(n, 1);
-  for (const Contact& c : contacts)
-    if (c.b < 0) grounded[islandRoot(parent, c.a)] = 1;
-  for (int i = 0; i < n; ++i)
-    if (!s.asleep[i] && s.stillFor[i] < model.sleep.time) ready[islandRoot(parent, i)] = 0;
-  for (int i = 0; i < n; ++i) {
-    const int root = islandRoot(parent, i);
-    if (s.asleep[i] || !ready[root] || !grounded[root]) continue;
+  ready = islands.grounded;
+  for (int i : data.scratch.awake)
+    if (s.stillFor[i] < model.sleep.time) ready[islands.root[i]] = 0;
+  bool fell = false;
+  for (int i : data.scratch.awake) {
+    const int root = islands.root[i];
+    if (!ready[root]) continue;
+    fell = true;
     s.asleep[i] = 1;
     s.island[i] = root;
     ++s.sleeping;
-    s.restForce[i] = cache.impulses.linear[i] / h;
-    s.restTorque[i] = cache.impulses.angular[i] / h;
+    const bool touched = !cache.impulses.linear.empty();
+    s.restForce[i] = touched ? Vec3(cache.impulses.linear[i] / h) : Vec3::Zero();
+    s.restTorque[i] = touched ? Vec3(cache.impulses.angular[i] / h) : Vec3::Zero();
     for (const SurfacePush& p : cache.impulses.pushes)
       if (p.body == i) s.resting.push_back({i, p.surface, p.impulse / h});
     data.Y[i].P.setZero();
@@ -109,28 +104,15 @@ void updateSleep(const WorldModel& model, WorldData& data, double h, CollisionCa
     data.aux[i].V.setZero();
     data.aux[i].omega.setZero();
   }
+  if (fell) {
+    setAsideSleeping(s, data.contactMemory);
+    s.boxes.reset();
+  }
+  return fell;
 }
 
-void setAsideSleeping(const SleepState& s, std::vector<ContactMemory>& memory, CollisionCache& cache) {
-  std::vector<ContactMemory>& kept = cache.sleepingMemory;
-  kept.clear();
-  if (s.sleeping == 0) return;
-  for (const ContactMemory& m : memory)
-    if (s.asleep[m.a]) kept.push_back(m);
-  memory.erase(std::remove_if(memory.begin(), memory.end(), [&](const ContactMemory& m) { return s.asleep[m.a]; }),
-               memory.end());
-}
-
-void mergeBackSleeping(std::vector<ContactMemory>& memory, CollisionCache& cache) {
-  const std::vector<ContactMemory>& kept = cache.sleepingMemory;
-  std::vector<ContactMemory>& merged = cache.mergedMemory;
-  if (kept.empty()) return;
-  merged.clear();
-  std::merge(memory.begin(), memory.end(), kept.begin(), kept.end(), std::back_inserter(merged),
-             [](const ContactMemory& x, const ContactMemory& y) {
-               return pairKey(x.a, x.b, x.surface) < pairKey(y.a, y.b, y.surface);
-             });
-  memory.swap(merged);
+void setAsideSleeping(SleepState& s, std::vector<ContactMemory>& memory) {
+  movePoints(memory, s.memory, [&](const ContactMemory& m) { return s.asleep[m.a] != 0; });
 }
 
 }  // namespace rigid

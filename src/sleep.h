@@ -27,21 +27,22 @@ void holdSleepers(const SleepState& s, const std::vector<BodyState>& Y, std::vec
 // Wakes the island of every sleeping body in `contacts` (the detector gives a sleeping
 // body only pairs with awake ones). Returns whether any woke: the contacts are then
 // detected again, with the woken islands' own.
-bool wakeTouched(const std::vector<Contact>& contacts, SleepState& s);
+bool wakeTouched(const std::vector<Contact>& contacts, WorldData& data);
 
 // The loads of the sleeping bodies over a time tau added to WorldData::contactLoads:
 // each keeps the contact force and torque and the pushes on surfaces it had when it
 // fell asleep.
 void addRestingLoads(WorldData& data, double tau);
 
-// After a step of h: each awake body's stillness, then the islands of the cache's
-// contacts (the step's) that have been still long enough on a surface fall asleep
-// (velocities zeroed).
-void updateSleep(const WorldModel& model, WorldData& data, double h, CollisionCache& cache);
+// After a step of h: each awake body's stillness, then the cache's islands (of the
+// step's contacts, islands.h) that have been still long enough on a surface fall
+// asleep (velocities zeroed). Returns whether any did.
+bool updateSleep(const WorldModel& model, WorldData& data, double h, CollisionCache& cache);
 
-// The contact memory of sleeping bodies is set aside before a solve (which keeps only
-// the points it solved) and merged back after it, so that a woken island starts warm.
-void setAsideSleeping(const SleepState& s, std::vector<ContactMemory>& memory, CollisionCache& cache);
-void mergeBackSleeping(std::vector<ContactMemory>& memory, CollisionCache& cache);
+// The contact memory of the sleeping bodies moved from `memory` (WorldData::
+// contactMemory, which the solver replaces by the points it solved) into the sleep
+// state's, until their island wakes (a woken island starts warm). Islands fall asleep
+// and wake seldom: a step in between moves none.
+void setAsideSleeping(SleepState& s, std::vector<ContactMemory>& memory);
 
 }  // namespace rigid

@@ -3,11 +3,15 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
+#include "contact_memory.h"
 #include "math_types.h"
 
 namespace rigid {
+
+class FixedBoxes;  // broadphase.h
 
 // Scene constants (solver.sleep, solver.sleepSpeed, solver.sleepTime).
 struct SleepRules {
@@ -34,6 +38,12 @@ struct SleepState {
   // reports its support (WorldData::contactLoads).
   std::vector<Vec3> restForce, restTorque;
   std::vector<RestingPush> resting;
+  // The sleeping bodies' contact memory (contact_memory.h), set aside from
+  // WorldData::contactMemory while they sleep so that a woken island starts warm.
+  std::vector<ContactMemory> memory;
+  // Derived, not saved: the sleeping bodies' bounding boxes for collision detection
+  // (CollisionDetector::fixedBoxes), null until built after islands fell asleep or woke.
+  std::shared_ptr<const FixedBoxes> boxes;
 };
 
 // Every body awake, none still: the state a run starts from.
@@ -48,13 +58,16 @@ inline SleepState awakeState(size_t bodies) {
 }
 
 // Wakes every body (a tunable parameter such as gravity changed); each must then be
-// still for the sleep time again before it sleeps.
-inline void wakeAll(SleepState& s) {
+// still for the sleep time again before it sleeps. Their contact memory returns to
+// `memory` (WorldData::contactMemory).
+inline void wakeAll(SleepState& s, std::vector<ContactMemory>& memory) {
   s.asleep.assign(s.asleep.size(), 0);
   s.island.assign(s.island.size(), -1);
   s.stillFor.assign(s.stillFor.size(), 0.0);
   s.resting.clear();
   s.sleeping = 0;
+  s.boxes.reset();
+  movePoints(s.memory, memory, [](const ContactMemory&) { return true; });
 }
 
 }  // namespace rigid

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numeric>
 #include <utility>
 
 #include "body_packs.h"
@@ -63,6 +64,8 @@ WorldData initialData(const WorldModel& model) {
   d.scratch.y.resize(n);
   d.scratch.y4.resize(n);
   d.scratch.u.resize(n);
+  d.scratch.awake.resize(n);
+  std::iota(d.scratch.awake.begin(), d.scratch.awake.end(), 0);
   d.scratch.held.reserve(n);
   d.scratch.felt.reserve(n);
   for (auto& k : d.scratch.k) k.resize(n);
@@ -80,14 +83,16 @@ void clearContactLoads(WorldData& data) {
   loads.duration = 0.0;
 }
 
-// computeVelocities() of every body, four bodies at a time (body_packs.h).
-void refreshAuxiliaries(const WorldModel& model, WorldData& data) {
-  const size_t n = data.Y.size();
+namespace {
+
+// computeVelocities() of the listed bodies, four at a time (body_packs.h).
+void refreshAuxiliaries(const WorldModel& model, const std::vector<int>& bodies, WorldData& data) {
+  const size_t n = bodies.size();
   for (size_t first = 0; first < n; first += kLanes) {
     QuatPack q;
     Pack L[3], Iinv[9];
     for (int lane = 0; lane < kLanes; ++lane) {
-      const size_t i = laneBody(first, lane, n);
+      const int i = bodies[laneBody(first, lane, n)];
       setLane(Iinv, lane, model.bodies[i].IbodyInv);
       setLane(q, lane, data.Y[i].q);
       setLane(L, lane, data.Y[i].L);
@@ -98,13 +103,21 @@ void refreshAuxiliaries(const WorldModel& model, WorldData& data) {
     multiply(Iinv, Lbody, omegaBody);
     multiply(R.r, omegaBody, omega);
     for (int lane = 0; lane < kLanes && first + lane < n; ++lane) {
-      const size_t i = first + lane;
+      const int i = bodies[first + lane];
       BodyAux& aux = data.aux[i];
       aux.V = data.Y[i].P / model.bodies[i].mass;
       for (int e = 0; e < 9; ++e) aux.R(e / 3, e % 3) = R.r[e][lane];
       aux.omega = Vec3(omega[0][lane], omega[1][lane], omega[2][lane]);
     }
   }
+}
+
+}  // namespace
+
+void refreshAuxiliaries(const WorldModel& model, WorldData& data) {
+  std::vector<int> every(data.Y.size());
+  std::iota(every.begin(), every.end(), 0);
+  refreshAuxiliaries(model, every, data);
 }
 
 namespace {
@@ -137,10 +150,6 @@ class StageTimer {
 
 StepProfile* profileOf(WorldData& data) { return data.profiling ? &data.profile : nullptr; }
 
-void normaliseOrientations(std::vector<BodyState>& Y) {
-  for (BodyState& y : Y) y.q.normalize();
-}
-
 // Pairs apart by less than this (m) are detected too, speculatively: an inelastic one
 // takes the impulse that keeps it from closing more than its gap in the next step, and
 // a box falling flat meets the floor with its far corners too. (4 mm: a cube falling
@@ -157,10 +166,19 @@ bool answerable(const BodyState& y) {
   return zero == 0.0 && y.X.cwiseAbs().maxCoeff() <= kMaxDistance;
 }
 
-int firstNonFinite(const std::vector<BodyState>& Y) {
-  for (size_t i = 0; i < Y.size(); ++i)
-    if (!answerable(Y[i])) return static_cast<int>(i);
+// The first of the listed bodies whose state is not answerable, -1 when none.
+int firstNonFinite(const std::vector<int>& bodies, const std::vector<BodyState>& Y) {
+  for (int i : bodies)
+    if (!answerable(Y[i])) return i;
   return -1;
+}
+
+// Scratch::awake from the sleep flags, after they changed.
+void listAwake(WorldData& data) {
+  std::vector<int>& awake = data.scratch.awake;
+  awake.clear();
+  for (size_t i = 0; i < data.Y.size(); ++i)
+    if (!data.sleep.asleep[i]) awake.push_back(static_cast<int>(i));
 }
 
 // Y(t + tau) into next: auxiliaries -> forces -> derivative per stage, then unit q.
@@ -172,12 +190,13 @@ StepResult failed(int body) {
 }
 
 // Returns the integrator's steps (0: the adaptive method failed its tolerance).
-// Sleeping bodies stay where they are.
+// Sleeping bodies are not integrated: their entries of next are not theirs (commit
+// leaves them out).
 int advance(const WorldModel& model, WorldData& data, double tau, std::vector<BodyState>& next) {
   StageTimer timer(data, Stage::Integrate);
-  const int steps = integrate(model, data, tau, next);
-  normaliseOrientations(next);
-  if constexpr (modules::kCollisions) holdSleepers(data.sleep, data.Y, next);
+  const int steps = integrate(model, data, data.scratch.awake, tau, next);
+  if (data.profiling) data.profile.integrated += static_cast<long>(data.scratch.awake.size());
+  for (int i : data.scratch.awake) next[i].q.normalize();
   return steps;
 }
 
@@ -198,11 +217,21 @@ void detectContacts(StepContext& s, const std::vector<BodyState>& Y, double marg
     CollisionCache* c = s.data.collision.get();
     if (!c) return;
     SleepState& sleep = s.data.sleep;
-    const std::vector<char>* asleep = sleep.sleeping > 0 ? &sleep.asleep : nullptr;
-    c->detector.detect(Y, margin, c->contacts, profileOf(s.data), margin, asleep);
-    if (wakeTouched(c->contacts, sleep))
-      c->detector.detect(Y, margin, c->contacts, profileOf(s.data), margin,
-                         sleep.sleeping > 0 ? &sleep.asleep : nullptr);
+    const std::vector<int>& awake = s.data.scratch.awake;
+    if (std::none_of(awake.begin(), awake.end(), [&](int i) { return c->boundingRadius[i] > 0.0; })) {
+      c->contacts.clear();  // every body that meets something sleeps: nothing to detect
+      return;
+    }
+    auto detect = [&] {
+      if (sleep.sleeping == 0) return c->detector.detect(Y, margin, c->contacts, profileOf(s.data), margin);
+      if (!sleep.boxes) sleep.boxes = c->detector.fixedBoxes(s.data.Y, sleep.asleep);
+      const Sleepers sleepers{sleep.asleep, *sleep.boxes};
+      c->detector.detect(Y, margin, c->contacts, profileOf(s.data), margin, &sleepers);
+    };
+    detect();
+    if (!wakeTouched(c->contacts, s.data)) return;
+    listAwake(s.data);
+    detect();
   }
 }
 
@@ -215,18 +244,20 @@ bool bouncingImpact(StepContext& s, const std::vector<BodyState>& Y) {
   return false;
 }
 
-// Whether some body strikes a surface or another body in Y (detected afresh). Only
-// bouncing impacts are located; restitutions combine by geometric mean, so without a
-// bouncy body (a pile of inelastic cubes) there is nothing to detect.
-bool impactIn(StepContext& s, const std::vector<BodyState>& Y) {
+// Whether some body strikes a surface or another body in a trial state `next`
+// (detected afresh; its sleeping bodies where they sleep). Only bouncing impacts are
+// located; restitutions combine by geometric mean, so without a bouncy body (a pile of
+// inelastic cubes) there is nothing to detect.
+bool impactIn(StepContext& s, std::vector<BodyState>& next) {
   if (!s.bouncy) return false;
-  detectContacts(s, Y, 0.0);
-  return bouncingImpact(s, Y);
+  if constexpr (modules::kCollisions) holdSleepers(s.data.sleep, s.data.Y, next);
+  detectContacts(s, next, 0.0);
+  return bouncingImpact(s, next);
 }
 
 // A solve's impulses on the bodies and the surfaces into the contact loads.
 void addImpulses(const ContactImpulses& impulses, WorldData::ContactLoads& loads) {
-  for (size_t i = 0; i < loads.impulse.size(); ++i) {
+  for (size_t i = 0; i < impulses.linear.size(); ++i) {
     loads.impulse[i] += impulses.linear[i];
     loads.angularImpulse[i] += impulses.angular[i];
   }
@@ -235,15 +266,19 @@ void addImpulses(const ContactImpulses& impulses, WorldData::ContactLoads& loads
 
 // After a step of `taken` is committed (a refused one adds nothing): its contact
 // impulses and the sleeping bodies' loads into WorldData::contactLoads, then the
-// islands that have come to rest fall asleep.
-void addLoadsAndSleep(StepContext& s, double taken) {
-  CollisionCache* c = s.data.collision.get();
-  if (!c) return;
+// islands of its contacts, of which those that have come to rest fall asleep.
+void addLoadsAndSleep(StepContext& s, CollisionCache& c, double taken) {
+  // (with every body asleep no island can fall asleep)
+  const bool mayFallAsleep = s.model.sleep.enabled && !s.data.scratch.awake.empty();
+  if (mayFallAsleep) {
+    StageTimer timer(s.data, Stage::Islands);
+    findIslands(c.contacts, static_cast<int>(s.data.Y.size()), c.islands);
+  }
   StageTimer timer(s.data, Stage::Sleep);
-  addImpulses(c->impulses, s.data.contactLoads);
+  addImpulses(c.impulses, s.data.contactLoads);
   s.data.contactLoads.duration += taken;
   addRestingLoads(s.data, taken);
-  updateSleep(s.model, s.data, taken, *c);
+  if (mayFallAsleep && updateSleep(s.model, s.data, taken, c)) listAwake(s.data);
 }
 
 // The energy audit: a body whose angular momentum the step left bitwise unchanged had
@@ -255,13 +290,13 @@ void addLoadsAndSleep(StepContext& s, double taken) {
 StepResult auditRotationalEnergy(const WorldModel& model, WorldData& data, const std::vector<BodyState>& before,
                                  double h) {
   WorldData::EnergyAudit& a = data.audit;
-  const size_t n = data.Y.size();
+  const std::vector<int>& awake = data.scratch.awake;  // a sleeping body neither turns nor gains
   if (model.energyGainLimit > 0.0) {
-    for (size_t i = 0; i < n; ++i) {
+    for (int i : awake) {
       if (data.Y[i].L != before[i].L || !(a.reference[i] > 0.0)) continue;
       const double gain = a.carried[i] * data.aux[i].omega.dot(data.Y[i].L) / a.reference[i] - 1.0;
       if (gain > model.energyGainLimit) {
-        StepResult r = failed(static_cast<int>(i));
+        StepResult r = failed(i);
         r.cause = StepCause::EnergyGain;
         r.energyGain = gain;
         r.stableStep = h * 0.5 * model.energyGainLimit / gain;
@@ -269,7 +304,7 @@ StepResult auditRotationalEnergy(const WorldModel& model, WorldData& data, const
       }
     }
   }
-  for (size_t i = 0; i < n; ++i) {
+  for (int i : awake) {
     const double energy = data.aux[i].omega.dot(data.Y[i].L);
     if (data.Y[i].L != before[i].L) {  // a torque or an impulse: a new stretch starts here
       if (a.reference[i] > 0.0) a.carried[i] *= a.energy[i] / a.reference[i];
@@ -280,15 +315,23 @@ StepResult auditRotationalEnergy(const WorldModel& model, WorldData& data, const
   return {};
 }
 
-// Accepts next as the new state if it is finite and the energy audit passes; a
-// refused state is swapped back out.
+// Accepts the awake bodies' states in next as theirs if they are finite and the energy
+// audit passes; a refused state is swapped back out.
 StepResult commit(const WorldModel& model, WorldData& data, std::vector<BodyState>& next, double h) {
-  if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);
-  std::swap(data.Y, next);  // next: the state before the step
-  refreshAuxiliaries(model, data);
+  const std::vector<int>& awake = data.scratch.awake;
+  if (const int bad = firstNonFinite(awake, next); bad >= 0) return failed(bad);
+  // next: the awake bodies' states before the step (all of them when none sleeps)
+  auto exchange = [&] {
+    if (data.sleep.sleeping == 0)
+      std::swap(data.Y, next);
+    else
+      for (int i : awake) std::swap(data.Y[i], next[i]);
+  };
+  exchange();
+  refreshAuxiliaries(model, awake, data);
   if (StepResult r = auditRotationalEnergy(model, data, next, h); !r.ok) {
-    std::swap(data.Y, next);
-    refreshAuxiliaries(model, data);
+    exchange();
+    refreshAuxiliaries(model, awake, data);
     return r;
   }
   return {};
@@ -305,7 +348,7 @@ int collisionSubsteps(const WorldModel& model, const WorldData& data, double h) 
   const size_t n = data.Y.size();
   std::vector<double>& travel = data.collision->travel;
   travel.assign(n, 0.0);
-  for (size_t i = 0; i < n; ++i)
+  for (int i : data.scratch.awake)
     if (c->boundingRadius[i] > 0.0)
       travel[i] = (data.aux[i].V.norm() + data.aux[i].omega.norm() * c->boundingRadius[i]) * h;
   double substeps = 1.0;
@@ -320,11 +363,11 @@ int collisionSubsteps(const WorldModel& model, const WorldData& data, double h) 
   for (size_t i = 0; i < n; ++i)
     if (c->boundingRadius[i] > 0.0) thinnest = std::min(thinnest, c->halfThickness[i]);
   for (const Surface& s : model.surfaces) thinnest = std::min(thinnest, s.halfExtent.minCoeff());
-  for (size_t i = 0; i < n; ++i) {
+  for (int i : data.scratch.awake) {
     if (c->boundingRadius[i] <= 0.0 || !(travel[i] > thinnest)) continue;
     const double reach = c->boundingRadius[i] + travel[i];
     for (size_t j = 0; j < n; ++j) {
-      if (j == i || c->boundingRadius[j] <= 0.0) continue;
+      if (j == static_cast<size_t>(i) || c->boundingRadius[j] <= 0.0) continue;
       if ((data.Y[i].X - data.Y[j].X).norm() > reach + c->boundingRadius[j] + travel[j]) continue;
       need(std::max(travel[i], travel[j]), std::min(c->halfThickness[i], c->halfThickness[j]));
     }
@@ -348,7 +391,7 @@ double speculativeMargin(const StepContext& s, const std::vector<BodyState>& Y) 
   const CollisionCache* c = modules::kCollisions ? s.data.collision.get() : nullptr;
   if (!c) return kSpeculativeMargin;
   double fastest = 0.0;  // m/s, the largest speed of a point of a body that meets something
-  for (size_t i = 0; i < Y.size(); ++i) {
+  for (int i : s.data.scratch.awake) {
     if (!(c->boundingRadius[i] > 0.0)) continue;
     const BodyConstants& b = s.model.bodies[i];
     const Mat3 R = Y[i].q.toRotationMatrix();
@@ -366,9 +409,12 @@ int moveBodies(StepContext& s, CollisionCache& c, double tau, std::vector<BodySt
   const int steps = advance(s.model, s.data, tau, next);
   if (steps == 0) return 0;
   StageTimer timer(s.data, Stage::Solve);
-  const SleepState& sleep = s.data.sleep;
-  for (size_t i = 0; i < s.data.contacts.size(); ++i)
-    if (!sleep.asleep[i]) s.data.contacts[i] = 0;  // a sleeping body keeps its count
+  for (int i : s.data.scratch.awake) s.data.contacts[i] = 0;  // a sleeping body keeps its count
+  if (c.stepContacts.empty()) {                               // nothing to solve, nothing to remember
+    c.impulses.clear();
+    c.storedMemory.clear();
+    return steps;
+  }
   const ConstraintReport report = solveConstraints(s.model, s.data, c.stepContacts, tau, s.data.contactMemory,
                                                    c.storedMemory, next, s.data.contacts, c.constraints, c.impulses);
   if (s.data.profiling) {
@@ -410,8 +456,7 @@ StepResult answerLocatedImpact(StepContext& s, CollisionCache& c) {
 }
 
 // The contacts of the step's start into the cache's stepContacts, with the speculative
-// margin (the cache's `contacts` then serve the impacts' probes); the sleeping bodies'
-// memory set aside.
+// margin (the cache's `contacts` then serve the impacts' probes).
 // Returns whether an impact can happen within the step: no pair can close more than the
 // margin in it (twice the fastest point's travel), so with no pair within the margin
 // there is none, unless the margin was capped.
@@ -420,14 +465,13 @@ bool collide(StepContext& s, CollisionCache& c) {
   const double margin = speculativeMargin(s, s.data.Y);
   detectContacts(s, s.data.Y, margin);
   std::swap(c.contacts, c.stepContacts);
-  setAsideSleeping(s.data.sleep, s.data.contactMemory, c);
   return !c.stepContacts.empty() || margin >= kMaxSpeculativeMargin;
 }
 
 // How much of the rest of the step to take: all of it, or up to the instant of a
 // bouncing impact inside it (next then holds the state there), when one can happen.
 double impactInstant(StepContext& s, CollisionCache& c, bool reachable, double rest, std::vector<BodyState>& next) {
-  if (!s.bouncy || !reachable || firstNonFinite(next) >= 0) return rest;
+  if (!s.bouncy || !reachable || firstNonFinite(s.data.scratch.awake, next) >= 0) return rest;
   StageTimer timer(s.data, Stage::Impacts);
   return impactIn(s, next) ? locateImpact(s, c, rest, next) : rest;
 }
@@ -438,9 +482,8 @@ StepResult commitStep(StepContext& s, CollisionCache& c, int steps, std::vector<
   StageTimer timer(s.data, Stage::Commit);
   std::swap(c.contacts, c.stepContacts);                           // the step's contacts, for sleep
   if (steps > 0) std::swap(s.data.contactMemory, c.storedMemory);  // else no solve stored any
-  mergeBackSleeping(s.data.contactMemory, c);
   if (steps == 0) return failed(-1);
-  if (const int bad = firstNonFinite(next); bad >= 0) return failed(bad);
+  if (const int bad = firstNonFinite(s.data.scratch.awake, next); bad >= 0) return failed(bad);
   return commit(s.model, s.data, next, s.h);
 }
 
@@ -457,7 +500,7 @@ StepResult stepWithContacts(StepContext& s, CollisionCache& c) {
     const int steps = moveBodies(s, c, rest, next);
     const double taken = steps > 0 && impacts < kMaxImpactsPerStep ? impactInstant(s, c, reachable, rest, next) : rest;
     if (const StepResult r = commitStep(s, c, steps, next); !r.ok) return r;
-    addLoadsAndSleep(s, taken);
+    addLoadsAndSleep(s, c, taken);
     s.data.steps += steps;
     done += taken;
     if (taken == rest || impacts >= kMaxImpactsPerStep) return {};
@@ -515,10 +558,10 @@ void stabilitySubsteps(const WorldModel& model, const WorldData& data, double h,
   };
   // the fastest spin sets the sub-steps: one square root, not one per body
   double spin2 = 0.0;
-  for (const BodyAux& aux : data.aux) spin2 = std::max(spin2, aux.omega.squaredNorm());
+  for (int i : data.scratch.awake) spin2 = std::max(spin2, data.aux[i].omega.squaredNorm());
   consider(std::sqrt(spin2), limits.spin, StepCause::Spin);
   if constexpr (modules::kMedia) {
-    for (size_t i = 0; i < data.Y.size(); ++i) {
+    for (int i : data.scratch.awake) {
       for (const Medium& medium : model.media) {
         const MediumRates rates = mediumRates(medium, model.bodies[i], data.Y[i], data.aux[i], model.gravity);
         consider(rates.damping, limits.damping, StepCause::Drag);
@@ -545,8 +588,8 @@ StepResult substepPlan(const WorldModel& model, WorldData& data, double h) {
 }  // namespace
 
 const char* stageName(Stage stage) {
-  static constexpr const char* kNames[kStageCount] = {"plan",  "wake",    "collide", "integrate",
-                                                      "solve", "impacts", "commit",  "sleep"};
+  static constexpr const char* kNames[kStageCount] = {"plan",    "wake",   "collide", "integrate", "solve",
+                                                      "impacts", "commit", "islands", "sleep"};
   return kNames[static_cast<int>(stage)];
 }
 
@@ -566,6 +609,7 @@ StepResult step(const WorldModel& model, WorldData& data, double h, bool stopAtI
   // (Fast bodies cost a collision detection per sub-step, hence their lower cap.)
   constexpr long kMaxSubsteps = 1000000;
   constexpr long kMaxFastSubsteps = 10000;
+  listAwake(data);  // between steps the FMU may restore a state or wake every body
   StepResult plan = substepPlan(model, data, h);
   if (plan.substeps > (plan.cause == StepCause::FastBody ? kMaxFastSubsteps : kMaxSubsteps)) {
     plan.ok = false;
@@ -574,7 +618,7 @@ StepResult step(const WorldModel& model, WorldData& data, double h, bool stopAtI
   if (data.profiling) data.profile.steps += plan.substeps;
   if constexpr (modules::kCollisions) {
     StageTimer timer(data, Stage::Wake);
-    wakeDriven(data);
+    if (wakeDriven(data)) listAwake(data);
   }
   StepContext context{model, data, h / static_cast<double>(plan.substeps), bouncyWorld(model), stopAtImpact};
   for (long k = 0; k < plan.substeps; ++k) {

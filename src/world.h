@@ -41,6 +41,7 @@ struct Scratch {
   std::vector<BodyDerivative> k[7];
   std::vector<BodyState> y, y4;  // the adaptive method's current state and its 4th-order solution
   std::vector<Vec3> u;           // Lie-group stages: rotation vector of each body
+  std::vector<int> awake;        // the bodies not asleep, ascending: what a step moves, checks and refreshes
   std::vector<int> held, felt;   // RK4: bodies whose forces are held over the step, and the others
   double adaptiveStep = 0.0;     // s, the adaptive method's next trial step (0: none yet)
 };
@@ -50,9 +51,10 @@ struct Scratch {
 // in each internal step: collide (the contacts of its start), integrate (the method's
 // free motion of every awake body), solve (the constraint solver: impacts, sub-steps,
 // store), impacts (is there a bouncing impact inside the step, and when: trial steps),
-// commit (the new state's checks) and sleep (contact loads, islands, who sleeps).
-enum class Stage { Plan, Wake, Collide, Integrate, Solve, Impacts, Commit, Sleep };
-constexpr int kStageCount = 8;
+// commit (the new state's checks), islands (of the step's contacts, when islands may
+// sleep) and sleep (contact loads, who sleeps).
+enum class Stage { Plan, Wake, Collide, Integrate, Solve, Impacts, Commit, Islands, Sleep };
+constexpr int kStageCount = 9;
 const char* stageName(Stage stage);  // "plan", "wake", "collide", ...
 
 // Where a step's time goes (ns, summed over steps), for the benchmarks: filled only
@@ -65,6 +67,8 @@ struct StepProfile {
   double broadphase = 0.0;   // of every detection: poses, bounding boxes, the sweep in grid rows
   double narrowphase = 0.0;  // of every detection: contact points of the candidate pairs
   long steps = 0;            // internal steps profiled
+  long integrated = 0;       // bodies the integrator moved, summed over its calls (sleepers are not)
+  long boxes = 0;            // bodies whose bounding boxes detection placed, summed over detections
   long solves = 0;           // constraint solves
   long points = 0;           // contact points answered, summed over the solves
   int running = -1;          // the Stage being timed, -1 when none

@@ -2,7 +2,8 @@
 // every pair of boxes, over calls in which the boxes move (the kept order is sorted
 // again), the axis of largest spread changes and the boxes grow (the cells change),
 // with large boxes (a floor, slabs) kept out of the grid, boxes touching exactly across
-// cell boundaries, and boxes so far away that their cell indices are clamped.
+// cell boundaries, and boxes so far away that their cell indices are clamped; and the
+// sleeping bodies' fixed boxes asked by moving ones.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -124,4 +125,43 @@ TEST(Broadphase, FewerThanTwoBoxesHaveNoPairs) {
   EXPECT_TRUE(found.empty());
   sap.overlaps({Vec3::Zero()}, {Vec3::Ones()}, found);
   EXPECT_TRUE(found.empty());
+}
+
+// Fixed boxes (the sleeping bodies') asked by moving ones: exactly the brute force's
+// overlaps, for queries of every size (a small box, one spanning many cells, one wider
+// than the whole set), boxes touching exactly, a large fixed slab kept out of the grid,
+// and boxes far enough away that their cells are clamped.
+TEST(Broadphase, FixedBoxesAnswerEveryQueryAsTheBruteForceDoes) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const int n = 300;
+  std::vector<int> ids(n);
+  std::vector<Vec3> lo(n), hi(n);
+  for (int k = 0; k < n; ++k) {
+    ids[k] = 1000 + 3 * k;
+    const Vec3 c(unit(rng), unit(rng), unit(rng));
+    const Vec3 half(0.01 + 0.03 * unit(rng), 0.01 + 0.03 * unit(rng), 0.01 + 0.03 * unit(rng));
+    lo[k] = c - half, hi[k] = c + half;
+  }
+  lo[0] = Vec3(-5, -5, -1), hi[0] = Vec3(5, 5, 0.02);               // a slab under everything
+  lo[1] = Vec3(1e12, 0, 0), hi[1] = Vec3(1e12 + 0.05, 0.05, 0.05);  // clamped cells
+  const rigid::FixedBoxes fixed(ids, lo, hi);
+  std::vector<int> found;
+  size_t total = 0;
+  for (int q = 0; q < 400; ++q) {
+    const double size = q < 300 ? 0.05 * unit(rng) : q < 390 ? 0.5 * unit(rng) : 10.0;
+    const Vec3 c(1.2 * unit(rng) - 0.1, 1.2 * unit(rng) - 0.1, 1.2 * unit(rng) - 0.1);
+    Vec3 qlo = c - Vec3::Constant(size), qhi = c + Vec3::Constant(size);
+    if (q == 0) qlo = Vec3(hi[5].x(), lo[5].y(), lo[5].z()), qhi = qlo + Vec3::Constant(0.01);  // touching
+    if (q == 1) qlo = Vec3(1e12 - 1, -1, -1), qhi = Vec3(1e12 + 1, 1, 1);
+    found.clear();
+    fixed.overlapping(qlo, qhi, found);
+    std::sort(found.begin(), found.end());
+    std::vector<int> expected;
+    for (int k = 0; k < n; ++k)
+      if ((lo[k].array() <= qhi.array()).all() && (qlo.array() <= hi[k].array()).all()) expected.push_back(ids[k]);
+    ASSERT_EQ(found, expected) << "query " << q;
+    total += expected.size();
+  }
+  EXPECT_GT(total, 400u);  // the queries met boxes, not an empty world
 }

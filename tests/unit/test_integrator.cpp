@@ -115,7 +115,7 @@ TEST(Integrator, LieRk4KeepsTheQuaternionUnitByConstruction) {
     std::vector<rigid::BodyState> next(1);
     double drift = 0.0;
     for (int k = 0; k < 1000; ++k) {
-      rigid::integrate(model, data, 1e-2, next);  // q as the method leaves it
+      rigid::integrate(model, data, {0}, 1e-2, next);  // q as the method leaves it
       drift = std::max(drift, std::abs(next[0].q.norm() - 1.0));
       data.Y = next;
       data.Y[0].q.normalize();

@@ -96,6 +96,41 @@ TEST(Sleep, ABodyFloatingFreeNeverSleepsHoweverSlowly) {
   EXPECT_LT(sim.data.Y[0].q.angularDistance(expected), 1e-9);
 }
 
+// Sleeping islands cost nothing: once a pile sleeps, a step neither integrates its
+// bodies nor places their boxes; a box sliding far from it is the only body integrated
+// and detected, and the pile's contact memory waits in the sleep state.
+TEST(Sleep, ASleepingPileIsNeitherIntegratedNorDetectedNorSolved) {
+  json bodies = pile(8, 2);
+  json slider = box("slider", Vec3::Constant(kEdge), Vec3(5.0, 0, 0.5 * kEdge), Quat::Identity(), 0.0, 0.0, 0.0);
+  slider["velocity"] = {0.5, 0, 0};
+  bodies.push_back(slider);  // frictionless: the pair's friction is the partners' geometric mean
+  Sim sim(sleeping(sceneOf(bodies, {floorSurface()}, 2e-3)));
+  sim.run(3.0);
+  ASSERT_EQ(asleep(sim), 8);
+  EXPECT_TRUE(sim.data.contactMemory.empty() || sim.data.contactMemory.front().a == 8);
+  EXPECT_FALSE(sim.data.sleep.memory.empty());
+  sim.data.profiling = true;
+  sim.run(1.0);
+  const rigid::StepProfile& p = sim.data.profile;
+  EXPECT_EQ(p.integrated, p.steps);  // the slider alone
+  EXPECT_EQ(p.boxes, p.steps);       // its box alone, once a step (nothing bounces)
+  EXPECT_EQ(asleep(sim), 8);
+  for (const rigid::ContactMemory& m : sim.data.contactMemory) EXPECT_EQ(m.a, 8);
+}
+
+// A world whose every body that meets something sleeps has nothing to detect or solve.
+TEST(Sleep, AWorldAsleepDetectsAndSolvesNothing) {
+  Sim sim(sleeping(sceneOf(pile(8, 2), {floorSurface()}, 2e-3)));
+  sim.run(3.0);
+  ASSERT_EQ(asleep(sim), 8);
+  sim.data.profiling = true;
+  sim.run(0.5);
+  const rigid::StepProfile& p = sim.data.profile;
+  EXPECT_EQ(p.integrated, 0);
+  EXPECT_EQ(p.broadphase, 0.0);
+  EXPECT_EQ(p.solves, 0);
+}
+
 TEST(Sleep, WithSleepOffABodyAtRestStaysAwake) {
   Sim sim(sceneOf(box("cube", Vec3::Constant(kEdge), Vec3(0, 0, 0.5 * kEdge)), {floorSurface()}));
   sim.run(2.0);

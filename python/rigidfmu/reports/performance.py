@@ -59,7 +59,7 @@ PENETRATION_TARGET = 1e-3    # m
 STAGES = ("integration", "broadphase", "narrowphase", "response")
 # the step's stages in the order it runs them (src/world.h, Stage): the benchmark's
 # <window>_ns_stage_<name> and <window>_runs_stage_<name>
-STEP_STAGES = ("plan", "wake", "collide", "integrate", "solve", "impacts", "commit", "sleep")
+STEP_STAGES = ("plan", "wake", "collide", "integrate", "solve", "impacts", "commit", "islands", "sleep")
 
 
 def log(msg):

@@ -10,6 +10,8 @@ namespace {
 
 // Boxes wider than this many median boxes stay out of the grid.
 constexpr double kLargeOverMedian = 4.0;
+// Calls between two searches for the median box.
+constexpr int kMedianCalls = 64;
 // Cell widths are powers of 2^(1/4), so that a cell stays the same from step to step
 // while the widest box turns (which would regroup the rows and undo the kept order).
 constexpr double kCellSteps = 4.0;
@@ -17,8 +19,14 @@ constexpr double kCellSteps = 4.0;
 // slower but still exact (the clamp keeps neighbouring cells neighbours).
 constexpr double kMaxCell = 1e9;
 
+// (compares and a cast rather than fmin, fmax and floor: no calls into libm for the two
+// cells of every box of every step; NaN lands in the outermost cell, as fmin sends it)
 long long cellOf(double x, double cell) {
-  return static_cast<long long>(std::floor(std::fmax(std::fmin(x / cell, kMaxCell), -kMaxCell)));
+  double t = x / cell;
+  if (!(t < kMaxCell)) t = kMaxCell;
+  if (t < -kMaxCell) t = -kMaxCell;
+  const auto k = static_cast<long long>(t);  // towards zero
+  return static_cast<double>(k) > t ? k - 1 : k;
 }
 
 }  // namespace
@@ -27,12 +35,19 @@ long long cellOf(double x, double cell) {
 // invalidates the kept order.
 void SweepAndPrune::chooseCells(const std::vector<Vec3>& lo, const std::vector<Vec3>& hi) {
   const int n = static_cast<int>(lo.size());
-  width_.resize(n);
-  for (int i = 0; i < n; ++i) width_[i] = (hi[i] - lo[i]).maxCoeff();
-  std::nth_element(width_.begin(), width_.begin() + n / 2, width_.end());
-  const double limit = kLargeOverMedian * width_[n / 2];
-
   bool regroup = static_cast<int>(isLarge_.size()) != n;
+  // The median box: boxes change width only as they turn (by sqrt 3 at most), so it is
+  // found again every kMedianCalls calls, or when the number of boxes changes. Which
+  // boxes count as large changes how pairs are found, not which.
+  if (regroup || ++sinceMedian_ >= kMedianCalls) {
+    width_.resize(n);
+    for (int i = 0; i < n; ++i) width_[i] = (hi[i] - lo[i]).maxCoeff();
+    std::nth_element(width_.begin(), width_.begin() + n / 2, width_.end());
+    median_ = width_[n / 2];
+    sinceMedian_ = 0;
+  }
+  const double limit = kLargeOverMedian * median_;
+
   isLarge_.resize(n);
   large_.clear();
   double widest = 0.0;

@@ -53,6 +53,8 @@ class SweepAndPrune {
   std::vector<int> order_;              // the boxes of the grid, by row, then lower bound on the sweep axis
   std::vector<Row> rows_;               // the rows in that order, then one past the last
   std::vector<double> width_;           // scratch: the boxes' widest extents, for their median
+  double median_ = 0.0;                 // the median box's widest extent when last found
+  int sinceMedian_ = 0;                 // calls since
   // in order_'s order: lower and upper bounds on the sweep axis, then on the other two
   std::vector<double> sorted_[6];
 };

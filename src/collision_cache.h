@@ -2,6 +2,7 @@
 // contacts it found, and the buffers of the step's sub-stepping and contact solve.
 #pragma once
 
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -18,7 +19,9 @@ struct CollisionCache {
   std::vector<Contact> contacts;
   std::vector<double> halfThickness;   // m, per body (0 for bodies that meet nothing)
   std::vector<double> boundingRadius;  // m, per body (0 for bodies that meet nothing)
-  std::vector<double> travel;          // m, scratch: each body's reach in a step
+  double thinnest =
+      std::numeric_limits<double>::infinity();  // m, the least half thickness of all these and the surfaces
+  std::vector<double> travel;                   // m, scratch: each body's reach in a step
   // the constraint solver (constraint_solver.h): the contacts of the step's start (the
   // cache's `contacts` may hold a probe's while an impact is located), its buffers,
   // the memory it stores, and the impulses it gave

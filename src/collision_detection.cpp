@@ -69,22 +69,25 @@ double supportExtent(const Geo& g, const Vec3& d) {
   return 0.0;
 }
 
-// Half extents of the tight world AABB of the shape.
-Vec3 aabbHalfExtent(const Geo& g) {
+// Half extents of the tight world AABB of the shape g turned by R (g.R's value, passed
+// apart so that the box of every body of every step reads it from registers).
+inline Vec3 aabbHalfExtent(const Geo& g, const Mat3& R) {
   switch (g.type) {
     case ShapeType::Sphere: return Vec3::Constant(g.radius);
-    case ShapeType::Box: return g.R.cwiseAbs() * g.half;
+    case ShapeType::Box: return R.cwiseAbs() * g.half;
     case ShapeType::Cylinder: {
-      const Vec3 u = g.R.col(2);
+      const Vec3 u = R.col(2);
       Vec3 e;
       for (int i = 0; i < 3; ++i)
         e[i] = g.halfLength * std::abs(u[i]) + g.radius * std::sqrt(std::max(0.0, 1.0 - u[i] * u[i]));
       return e;
     }
-    case ShapeType::Capsule: return g.halfLength * g.R.col(2).cwiseAbs() + Vec3::Constant(g.radius);
+    case ShapeType::Capsule: return g.halfLength * R.col(2).cwiseAbs() + Vec3::Constant(g.radius);
   }
   return Vec3::Zero();
 }
+
+Vec3 aabbHalfExtent(const Geo& g) { return aabbHalfExtent(g, g.R); }
 
 // A point of the shape farthest along d (world frame).
 Vec3 supportPoint(const Geo& g, const Vec3& d) {
@@ -659,10 +662,11 @@ CollisionDetector& CollisionDetector::operator=(CollisionDetector&&) noexcept = 
 Vec3 CollisionDetector::Impl::pose(int slot, const std::vector<BodyState>& Y) {
   Geo& g = geo[slot];
   const BodyState& y = Y[slotIndex[slot]];
-  g.R = y.q.normalized().toRotationMatrix();
+  const Mat3 R = y.q.normalized().toRotationMatrix();
+  g.R = R;
   g.p = y.X;
   placed[slot] = false;
-  return aabbHalfExtent(g);
+  return aabbHalfExtent(g, R);
 }
 
 std::shared_ptr<const FixedBoxes> CollisionDetector::fixedBoxes(const std::vector<BodyState>& Y,
@@ -746,6 +750,8 @@ void CollisionDetector::Impl::pairWithSleepers(const Sleepers& sleepers, const s
 // response's passes, and so its results, follow it. Counting sort by body, then each
 // body's few pairs by partner.
 void CollisionDetector::Impl::sortPairs() {
+  pairs.clear();
+  if (found.empty()) return;  // (bodies far apart: no per-body work)
   firstOf.assign(bodySlot.size() + 1, 0);
   for (const Pair& p : found) ++firstOf[p.a + 1];
   for (size_t b = 1; b < firstOf.size(); ++b) firstOf[b] += firstOf[b - 1];

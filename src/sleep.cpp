@@ -73,6 +73,10 @@ void addRestingLoads(WorldData& data, double tau) {
 
 bool updateSleep(const WorldModel& model, WorldData& data, double h, CollisionCache& cache) {
   SleepState& s = data.sleep;
+  if (cache.contacts.empty()) {  // a body that touches nothing does not rest: its stillness restarts
+    for (int i : data.scratch.awake) s.stillFor[i] = 0.0;
+    return false;
+  }
   for (int i : data.scratch.awake) {
     const double speed = data.aux[i].V.norm() + data.aux[i].omega.norm() * cache.boundingRadius[i];
     const bool still = speed < model.sleep.speed && !drives(data.input[i]) && !drives(data.inputRate[i]);

@@ -35,8 +35,8 @@ bool wakeTouched(const std::vector<Contact>& contacts, WorldData& data);
 void addRestingLoads(WorldData& data, double tau);
 
 // After a step of h: each awake body's stillness, then the cache's islands (of the
-// step's contacts, islands.h) that have been still long enough on a surface fall
-// asleep (velocities zeroed). Returns whether any did.
+// step's contacts, islands.h; none are needed when it had none) that have been still
+// long enough on a surface fall asleep (velocities zeroed). Returns whether any did.
 bool updateSleep(const WorldModel& model, WorldData& data, double h, CollisionCache& cache);
 
 // The contact memory of the sleeping bodies moved from `memory` (WorldData::

@@ -56,7 +56,10 @@ WorldData initialData(const WorldModel& model) {
         const Shape& shape = model.bodies[i].shape;
         d.collision->halfThickness.push_back(meetsSurfaces[i] ? halfThickness(shape) : 0.0);
         d.collision->boundingRadius.push_back(meetsSurfaces[i] ? boundingRadius(shape) : 0.0);
+        if (meetsSurfaces[i]) d.collision->thinnest = std::min(d.collision->thinnest, halfThickness(shape));
       }
+      for (const Surface& s : model.surfaces)
+        d.collision->thinnest = std::min(d.collision->thinnest, s.halfExtent.minCoeff());
     }
   }
   d.scratch.stage.resize(n);
@@ -85,14 +88,14 @@ void clearContactLoads(WorldData& data) {
 
 namespace {
 
-// computeVelocities() of the listed bodies, four at a time (body_packs.h).
-void refreshAuxiliaries(const WorldModel& model, const std::vector<int>& bodies, WorldData& data) {
-  const size_t n = bodies.size();
+// computeVelocities() of n bodies, bodyAt(k) the k-th, four at a time (body_packs.h).
+template <class BodyAt>
+void refreshPacked(const WorldModel& model, size_t n, BodyAt bodyAt, WorldData& data) {
   for (size_t first = 0; first < n; first += kLanes) {
     QuatPack q;
     Pack L[3], Iinv[9];
     for (int lane = 0; lane < kLanes; ++lane) {
-      const int i = bodies[laneBody(first, lane, n)];
+      const size_t i = bodyAt(laneBody(first, lane, n));
       setLane(Iinv, lane, model.bodies[i].IbodyInv);
       setLane(q, lane, data.Y[i].q);
       setLane(L, lane, data.Y[i].L);
@@ -103,7 +106,7 @@ void refreshAuxiliaries(const WorldModel& model, const std::vector<int>& bodies,
     multiply(Iinv, Lbody, omegaBody);
     multiply(R.r, omegaBody, omega);
     for (int lane = 0; lane < kLanes && first + lane < n; ++lane) {
-      const int i = bodies[first + lane];
+      const size_t i = bodyAt(first + lane);
       BodyAux& aux = data.aux[i];
       aux.V = data.Y[i].P / model.bodies[i].mass;
       for (int e = 0; e < 9; ++e) aux.R(e / 3, e % 3) = R.r[e][lane];
@@ -115,12 +118,21 @@ void refreshAuxiliaries(const WorldModel& model, const std::vector<int>& bodies,
 }  // namespace
 
 void refreshAuxiliaries(const WorldModel& model, WorldData& data) {
-  std::vector<int> every(data.Y.size());
-  std::iota(every.begin(), every.end(), 0);
-  refreshAuxiliaries(model, every, data);
+  refreshPacked(
+      model, data.Y.size(), [](size_t k) { return k; }, data);
 }
 
 namespace {
+
+// refreshAuxiliaries() of the awake bodies.
+void refreshAwake(const WorldModel& model, WorldData& data) {
+  const std::vector<int>& awake = data.scratch.awake;
+  if (data.sleep.sleeping == 0)  // (the same, with no list to read)
+    refreshAuxiliaries(model, data);
+  else
+    refreshPacked(
+        model, awake.size(), [&](size_t k) { return static_cast<size_t>(awake[k]); }, data);
+}
 
 // Adds the time of its scope to its stage's in the profile, when profiling and no other
 // stage is being timed (a stage run inside another is that one's).
@@ -166,16 +178,29 @@ bool answerable(const BodyState& y) {
   return zero == 0.0 && y.X.cwiseAbs().maxCoeff() <= kMaxDistance;
 }
 
-// The first of the listed bodies whose state is not answerable, -1 when none.
-int firstNonFinite(const std::vector<int>& bodies, const std::vector<BodyState>& Y) {
-  for (int i : bodies)
-    if (!answerable(Y[i])) return i;
-  return -1;
+// f(i) of each awake body i, ascending (Scratch::awake; every body, with no list to
+// read, when none sleeps: free bodies are the common case).
+template <class F>
+void forEachAwake(const WorldData& data, F f) {
+  if (data.sleep.sleeping == 0)
+    for (int i = 0; i < static_cast<int>(data.Y.size()); ++i) f(i);
+  else
+    for (int i : data.scratch.awake) f(i);
+}
+
+// The first awake body whose state in Y is not answerable, -1 when none.
+int firstNonFinite(const WorldData& data, const std::vector<BodyState>& Y) {
+  int bad = -1;
+  forEachAwake(data, [&](int i) {
+    if (bad < 0 && !answerable(Y[i])) bad = i;
+  });
+  return bad;
 }
 
 // Scratch::awake from the sleep flags, after they changed.
 void listAwake(WorldData& data) {
   std::vector<int>& awake = data.scratch.awake;
+  if (data.sleep.sleeping == 0 && awake.size() == data.Y.size()) return;  // every body, as listed
   awake.clear();
   for (size_t i = 0; i < data.Y.size(); ++i)
     if (!data.sleep.asleep[i]) awake.push_back(static_cast<int>(i));
@@ -196,7 +221,7 @@ int advance(const WorldModel& model, WorldData& data, double tau, std::vector<Bo
   StageTimer timer(data, Stage::Integrate);
   const int steps = integrate(model, data, data.scratch.awake, tau, next);
   if (data.profiling) data.profile.integrated += static_cast<long>(data.scratch.awake.size());
-  for (int i : data.scratch.awake) next[i].q.normalize();
+  forEachAwake(data, [&](int i) { next[i].q.normalize(); });
   return steps;
 }
 
@@ -268,9 +293,9 @@ void addImpulses(const ContactImpulses& impulses, WorldData::ContactLoads& loads
 // impulses and the sleeping bodies' loads into WorldData::contactLoads, then the
 // islands of its contacts, of which those that have come to rest fall asleep.
 void addLoadsAndSleep(StepContext& s, CollisionCache& c, double taken) {
-  // (with every body asleep no island can fall asleep)
-  const bool mayFallAsleep = s.model.sleep.enabled && !s.data.scratch.awake.empty();
-  if (mayFallAsleep) {
+  // (no island can fall asleep with every body asleep, or without a surface to rest on)
+  const bool mayFallAsleep = s.model.sleep.enabled && !s.data.scratch.awake.empty() && !s.model.surfaces.empty();
+  if (mayFallAsleep && !c.contacts.empty()) {
     StageTimer timer(s.data, Stage::Islands);
     findIslands(c.contacts, static_cast<int>(s.data.Y.size()), c.islands);
   }
@@ -289,52 +314,66 @@ void addLoadsAndSleep(StepContext& s, CollisionCache& c, double taken) {
 // audit only when the step is accepted.
 StepResult auditRotationalEnergy(const WorldModel& model, WorldData& data, const std::vector<BodyState>& before,
                                  double h) {
-  WorldData::EnergyAudit& a = data.audit;
-  const std::vector<int>& awake = data.scratch.awake;  // a sleeping body neither turns nor gains
+  WorldData::EnergyAudit& a = data.audit;  // (a sleeping body neither turns nor gains)
+  StepResult r;
   if (model.energyGainLimit > 0.0) {
-    for (int i : awake) {
-      if (data.Y[i].L != before[i].L || !(a.reference[i] > 0.0)) continue;
+    forEachAwake(data, [&](int i) {
+      if (!r.ok || data.Y[i].L != before[i].L || !(a.reference[i] > 0.0)) return;
       const double gain = a.carried[i] * data.aux[i].omega.dot(data.Y[i].L) / a.reference[i] - 1.0;
-      if (gain > model.energyGainLimit) {
-        StepResult r = failed(i);
-        r.cause = StepCause::EnergyGain;
-        r.energyGain = gain;
-        r.stableStep = h * 0.5 * model.energyGainLimit / gain;
-        return r;
-      }
-    }
+      if (!(gain > model.energyGainLimit)) return;
+      r = failed(i);
+      r.cause = StepCause::EnergyGain;
+      r.energyGain = gain;
+      r.stableStep = h * 0.5 * model.energyGainLimit / gain;
+    });
+    if (!r.ok) return r;
   }
-  for (int i : awake) {
+  forEachAwake(data, [&](int i) {
     const double energy = data.aux[i].omega.dot(data.Y[i].L);
     if (data.Y[i].L != before[i].L) {  // a torque or an impulse: a new stretch starts here
       if (a.reference[i] > 0.0) a.carried[i] *= a.energy[i] / a.reference[i];
       a.reference[i] = energy;
     }
     a.energy[i] = energy;
-  }
-  return {};
+  });
+  return r;
 }
 
 // Accepts the awake bodies' states in next as theirs if they are finite and the energy
 // audit passes; a refused state is swapped back out.
 StepResult commit(const WorldModel& model, WorldData& data, std::vector<BodyState>& next, double h) {
-  const std::vector<int>& awake = data.scratch.awake;
-  if (const int bad = firstNonFinite(awake, next); bad >= 0) return failed(bad);
+  if (const int bad = firstNonFinite(data, next); bad >= 0) return failed(bad);
   // next: the awake bodies' states before the step (all of them when none sleeps)
   auto exchange = [&] {
     if (data.sleep.sleeping == 0)
       std::swap(data.Y, next);
     else
-      for (int i : awake) std::swap(data.Y[i], next[i]);
+      for (int i : data.scratch.awake) std::swap(data.Y[i], next[i]);
   };
   exchange();
-  refreshAuxiliaries(model, awake, data);
+  refreshAwake(model, data);
   if (StepResult r = auditRotationalEnergy(model, data, next, h); !r.ok) {
     exchange();
-    refreshAuxiliaries(model, awake, data);
+    refreshAwake(model, data);
     return r;
   }
   return {};
+}
+
+// The speed of the fastest point of a body (m/s) of auxiliaries aux and bounding
+// radius r: |V| + |omega| r.
+double pointSpeed(const BodyAux& aux, double r) { return aux.V.norm() + aux.omega.norm() * r; }
+
+// A bound of the awake bodies' pointSpeed (m/s), of those that meet something, with no
+// square root a body: (|V| + |omega| r)^2 <= 2 (|V|^2 + |omega|^2 r^2). Most steps need
+// no more than it to know that no body is fast.
+double fastestPointBound(const WorldData& data, const CollisionCache& c) {
+  double most = 0.0;
+  for (int i : data.scratch.awake) {
+    const double r = c.boundingRadius[i];
+    if (r > 0.0) most = std::max(most, data.aux[i].V.squaredNorm() + data.aux[i].omega.squaredNorm() * r * r);
+  }
+  return std::sqrt(2.0 * most);
 }
 
 // Continuous collision by sub-stepping: between two detections no colliding body may
@@ -344,7 +383,7 @@ StepResult commit(const WorldModel& model, WorldData& data, std::vector<BodyStat
 // the step is bounded by the velocities at its start.
 int collisionSubsteps(const WorldModel& model, const WorldData& data, double h) {
   const CollisionCache* c = modules::kCollisions ? data.collision.get() : nullptr;
-  if (!c) return 1;
+  if (!c || !(fastestPointBound(data, *c) * h > c->thinnest)) return 1;
   const size_t n = data.Y.size();
   std::vector<double>& travel = data.collision->travel;
   travel.assign(n, 0.0);
@@ -359,10 +398,7 @@ int collisionSubsteps(const WorldModel& model, const WorldData& data, double h) 
   // one's half thickness, so only bodies moving more than the thinnest thing they could
   // hit (any colliding body or surface) are checked, each against everything it can
   // reach: none in a pile of slow cubes, a few when something is thrown.
-  double thinnest = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < n; ++i)
-    if (c->boundingRadius[i] > 0.0) thinnest = std::min(thinnest, c->halfThickness[i]);
-  for (const Surface& s : model.surfaces) thinnest = std::min(thinnest, s.halfExtent.minCoeff());
+  const double thinnest = c->thinnest;
   for (int i : data.scratch.awake) {
     if (c->boundingRadius[i] <= 0.0 || !(travel[i] > thinnest)) continue;
     const double reach = c->boundingRadius[i] + travel[i];
@@ -387,17 +423,12 @@ int collisionSubsteps(const WorldModel& model, const WorldData& data, double h) 
 // pushed out. At most kMaxSpeculativeMargin: faster bodies are sub-stepped.
 constexpr double kMaxSpeculativeMargin = 0.05;  // m
 
-double speculativeMargin(const StepContext& s, const std::vector<BodyState>& Y) {
+double speculativeMargin(const StepContext& s) {
   const CollisionCache* c = modules::kCollisions ? s.data.collision.get() : nullptr;
-  if (!c) return kSpeculativeMargin;
+  if (!c || !(2.0 * fastestPointBound(s.data, *c) * s.h > kSpeculativeMargin)) return kSpeculativeMargin;
   double fastest = 0.0;  // m/s, the largest speed of a point of a body that meets something
-  for (int i : s.data.scratch.awake) {
-    if (!(c->boundingRadius[i] > 0.0)) continue;
-    const BodyConstants& b = s.model.bodies[i];
-    const Mat3 R = Y[i].q.toRotationMatrix();
-    const Vec3 omega = R * (b.IbodyInv * (R.transpose() * Y[i].L));
-    fastest = std::max(fastest, Y[i].P.norm() / b.mass + omega.norm() * c->boundingRadius[i]);
-  }
+  for (int i : s.data.scratch.awake)
+    if (c->boundingRadius[i] > 0.0) fastest = std::max(fastest, pointSpeed(s.data.aux[i], c->boundingRadius[i]));
   return std::clamp(2.0 * fastest * s.h, kSpeculativeMargin, kMaxSpeculativeMargin);
 }
 
@@ -446,7 +477,7 @@ double locateImpact(StepContext& s, CollisionCache& c, double tau, std::vector<B
 // impacts stage at the located instant, whose impulses join the contact loads.
 StepResult answerLocatedImpact(StepContext& s, CollisionCache& c) {
   StageTimer timer(s.data, Stage::Impacts);
-  detectContacts(s, s.data.Y, speculativeMargin(s, s.data.Y));
+  detectContacts(s, s.data.Y, speculativeMargin(s));
   std::vector<BodyState>& next = s.data.scratch.next;
   next = s.data.Y;
   answerImpactsNow(s.model, s.data, c.contacts, s.h, next, c.constraints, c.impulses);
@@ -462,7 +493,7 @@ StepResult answerLocatedImpact(StepContext& s, CollisionCache& c) {
 // there is none, unless the margin was capped.
 bool collide(StepContext& s, CollisionCache& c) {
   StageTimer timer(s.data, Stage::Collide);
-  const double margin = speculativeMargin(s, s.data.Y);
+  const double margin = speculativeMargin(s);
   detectContacts(s, s.data.Y, margin);
   std::swap(c.contacts, c.stepContacts);
   return !c.stepContacts.empty() || margin >= kMaxSpeculativeMargin;
@@ -471,7 +502,7 @@ bool collide(StepContext& s, CollisionCache& c) {
 // How much of the rest of the step to take: all of it, or up to the instant of a
 // bouncing impact inside it (next then holds the state there), when one can happen.
 double impactInstant(StepContext& s, CollisionCache& c, bool reachable, double rest, std::vector<BodyState>& next) {
-  if (!s.bouncy || !reachable || firstNonFinite(s.data.scratch.awake, next) >= 0) return rest;
+  if (!s.bouncy || !reachable || firstNonFinite(s.data, next) >= 0) return rest;
   StageTimer timer(s.data, Stage::Impacts);
   return impactIn(s, next) ? locateImpact(s, c, rest, next) : rest;
 }
@@ -483,7 +514,6 @@ StepResult commitStep(StepContext& s, CollisionCache& c, int steps, std::vector<
   std::swap(c.contacts, c.stepContacts);                           // the step's contacts, for sleep
   if (steps > 0) std::swap(s.data.contactMemory, c.storedMemory);  // else no solve stored any
   if (steps == 0) return failed(-1);
-  if (const int bad = firstNonFinite(s.data.scratch.awake, next); bad >= 0) return failed(bad);
   return commit(s.model, s.data, next, s.h);
 }
 

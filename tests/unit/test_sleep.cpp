@@ -99,7 +99,7 @@ TEST(Sleep, ABodyFloatingFreeNeverSleepsHoweverSlowly) {
 // Sleeping islands cost nothing: once a pile sleeps, a step neither integrates its
 // bodies nor places their boxes; a box sliding far from it is the only body integrated
 // and detected, and the pile's contact memory waits in the sleep state.
-TEST(Sleep, ASleepingPileIsNeitherIntegratedNorDetectedNorSolved) {
+TEST(Sleep, ASleepingPileIsNeitherIntegratedNorBoxed) {
   json bodies = pile(8, 2);
   json slider = box("slider", Vec3::Constant(kEdge), Vec3(5.0, 0, 0.5 * kEdge), Quat::Identity(), 0.0, 0.0, 0.0);
   slider["velocity"] = {0.5, 0, 0};

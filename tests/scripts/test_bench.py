@@ -66,8 +66,9 @@ def test_piles_falling_and_at_rest(quick):
         for w in WINDOWS:
             x = m[w]
             assert measured(x["s_per_simulated_s"]) and measured(x["us_per_step"]), (n, w)
-            # a pile's cubes touch in both windows, so the solver ran
-            assert x["solves_per_step"] > 0, (n, w)
+            # a pile's cubes touch in both windows, so the solver ran, unless at rest every
+            # island sleeps (a sleeping island is not solved)
+            assert x["solves_per_step"] > 0 or (w == "rest" and m["asleep_3s"] == n), (n, w)
             # the contact points a solve answered (its work); at rest the islands may all
             # be asleep, with no points
             assert measured(x["points_per_solve"]) or (w == "rest" and x["points_per_solve"] == 0), (n, w)

@@ -174,8 +174,8 @@ def window_figures(b):
                   "shares": shares, "stage_shares": stage_shares,
                   "solves_per_step": solves / steps if steps else math.nan,
                   # the contact points a solve answered, each through the same fixed
-                  # sub-steps and relax pass
-                  "points_per_solve": b[f"{w}_points_per_solve"] if solves else math.nan}
+                  # sub-steps and relax pass; none when no solve ran (every island asleep)
+                  "points_per_solve": b[f"{w}_points_per_solve"] if solves else 0.0}
     return out
 
 

@@ -48,6 +48,11 @@ fi
 # would put it, so that `.venv/bin/python -m rigidfmu` and the tests run this tree.
 site="$("$venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
 [ -f "$site/rigidfmu-source.pth" ] || echo "$root/python" > "$site/rigidfmu-source.pth"
+# and the command, as pip's entry point would write it: .venv/bin/rigidfmu
+if [ ! -x "$venv/bin/rigidfmu" ]; then
+  printf '#!/bin/sh\nexec "%s/bin/python" -m rigidfmu "$@"\n' "$venv" > "$venv/bin/rigidfmu"
+  chmod +x "$venv/bin/rigidfmu"
+fi
 
 # three.js, esbuild and playwright-core exactly as locked; npm ci empties node_modules
 # first, so a changed lock never leaves a stale package behind.

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <map>
@@ -412,7 +413,9 @@ Scene parseScene(const std::string& text) {
 }
 
 Scene loadSceneFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  // The path is UTF-8 (a decoded file URI): on Windows a narrow path would be read in
+  // the ANSI code page and a folder such as C:\Users\José would not open.
+  std::ifstream in(std::filesystem::u8path(path), std::ios::binary);
   if (!in) throw SceneError("scene: cannot open \"" + path + "\"");
   std::ostringstream text;
   text << in.rdbuf();

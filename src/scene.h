@@ -35,7 +35,7 @@ struct Scene {
 };
 
 Scene parseScene(const std::string& jsonText);
-Scene loadSceneFile(const std::string& path);
+Scene loadSceneFile(const std::string& path);  // path in UTF-8, on every platform
 
 // Defaults of the scene format, documented in the README.
 namespace defaults {

@@ -145,6 +145,15 @@ def test_check_accepts_every_example_scene():
         assert "the scene is valid" in run.stdout
 
 
+def test_the_source_trees_command_is_where_the_readme_says():
+    # README: "in the source tree `.venv/bin/rigidfmu`" (scripts/setup.sh writes it)
+    command = ROOT / ".venv" / "bin" / "rigidfmu"
+    assert command.is_file(), f"{command} is missing: scripts/setup.sh writes it"
+    run = subprocess.run([str(command), "check", ROOT / "scripts" / "scenes" / "default.json"], capture_output=True,
+                         text=True, env=ENV, cwd=ROOT)
+    assert run.returncode == 0 and "the scene is valid" in run.stdout, run.stderr
+
+
 def members(fmu):
     with zipfile.ZipFile(fmu) as z:
         return {name: z.read(name) for name in z.namelist()}

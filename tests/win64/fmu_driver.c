@@ -17,7 +17,10 @@
  *     a sample of bad calls: DoStep before initialisation, NaN into input VR, an
  *     unknown value reference; each call's status and the message it logged.
  * RESOURCES: FMI 2's resource URI, FMI 3's resource path. GUID: FMI 3's
- * instantiation token. Exit status 0 when every call that should succeed did. */
+ * instantiation token. LIBRARY and FMI 3's RESOURCES are UTF-8 with %XX escapes, which
+ * the driver decodes: a non-ASCII path then reaches it intact whatever code page wine
+ * gives argv (the library is opened by its wide-character name on Windows). Exit
+ * status 0 when every call that should succeed did. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -35,7 +38,11 @@
 #ifdef _WIN32
 #include <windows.h>
 typedef HMODULE Library;
-static Library open_library(const char* path) { return LoadLibraryA(path); }
+static Library open_library(const char* path) {
+  wchar_t wide[4096];
+  if (!MultiByteToWideChar(CP_UTF8, 0, path, -1, wide, 4096)) return NULL;
+  return LoadLibraryW(wide);
+}
 static void* find_symbol(Library lib, const char* name) { return (void*)GetProcAddress(lib, name); }
 #else
 #include <dlfcn.h>
@@ -43,6 +50,21 @@ typedef void* Library;
 static Library open_library(const char* path) { return dlopen(path, RTLD_NOW | RTLD_LOCAL); }
 static void* find_symbol(Library lib, const char* name) { return dlsym(lib, name); }
 #endif
+
+/* %XX escapes decoded in place. */
+static void unescape(char* s) {
+  char* out = s;
+  for (; *s; ++s) {
+    unsigned value;
+    if (s[0] == '%' && s[1] && s[2] && sscanf(s + 1, "%2x", &value) == 1) {
+      *out++ = (char)value;
+      s += 2;
+    } else {
+      *out++ = *s;
+    }
+  }
+  *out = '\0';
+}
 
 #define MAX_VRS 4096
 #define MAX_SETTINGS 64
@@ -313,6 +335,10 @@ int main(int argc, char** argv) {
     fprintf(stderr, "usage: %s LIBRARY GUID RESOURCES run STEPS H OUT [VR=V|VR~A]... | abuse VR\n", argv[0]);
     return 2;
   }
+  unescape(argv[1]);
+#ifdef FMI3
+  unescape(argv[3]);
+#endif
   Library lib = open_library(argv[1]);
   if (!lib) {
     fprintf(stderr, "cannot load %s\n", argv[1]);

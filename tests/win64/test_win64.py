@@ -13,6 +13,7 @@ import pathlib
 import re
 import shutil
 import subprocess
+import urllib.parse
 import zipfile
 
 import pytest
@@ -111,18 +112,25 @@ class Unpacked:
         self.reals = [v for v in self.md.modelVariables if v.type == real]
 
     def resources(self, windows):
-        """FMI 2.0: the resources' URI; FMI 3.0: their path, ending in a separator.
-        wine's drive Z: is the root of this machine's file system."""
+        """FMI 2.0: the resources' URI; FMI 3.0: their path, ending in a separator, with
+        %XX escapes that the driver decodes. wine's drive Z: is the root of this machine's
+        file system."""
         folder = self.dir / "resources"
         if self.fmi == 3:
-            return "Z:" + str(folder).replace("/", "\\") + "\\" if windows else str(folder) + "/"
-        return "file:///Z:" + str(folder) if windows else folder.as_uri()
+            return escaped("Z:" + str(folder).replace("/", "\\") + "\\" if windows else str(folder) + "/")
+        return "file:///Z:" + escaped(str(folder)) if windows else folder.as_uri()
 
     def linux_args(self):
-        return [str(self.so), self.md.guid, self.resources(windows=False)]
+        return [escaped(str(self.so)), self.md.guid, self.resources(windows=False)]
 
     def windows_args(self):
-        return ["Z:" + str(self.dll).replace("/", "\\"), self.md.guid, self.resources(windows=True)]
+        return [escaped("Z:" + str(self.dll).replace("/", "\\")), self.md.guid, self.resources(windows=True)]
+
+
+def escaped(path):
+    """A path as the driver takes it: UTF-8, %XX-escaped outside ASCII letters, digits
+    and separators (fmu_driver.c decodes it)."""
+    return urllib.parse.quote(path, safe="/\\:-_.~")
 
 
 @pytest.fixture(scope="module", params=[(s.name, fmi) for s in SCENES for fmi in (2, 3)],
@@ -246,3 +254,21 @@ def test_the_dll_carries_fcl_exactly_when_the_linux64_binary_bundles_it(unpacked
     text = unpacked.dll.read_bytes()
     assert (b"N3fcl" in text) == linux_fcl
     assert (b"ccd" in text.lower()) == linux_fcl  # libccd, FCL's GJK/EPA
+
+
+@pytest.mark.parametrize("fmi", [2, 3])
+def test_an_fmu_unpacked_in_a_folder_with_accents_and_spaces_runs_on_windows(fmi, fmu_of, drivers, wine_env,
+                                                                          tmp_path):
+    """The FMU unpacked under a user's folder as Windows names them (C:\\Users\\José
+    Müller\\...): the win64 binary opens its scene there (its resource URI or path is
+    UTF-8, read by wide-character name) and runs the same steps as the linux64 one."""
+    scene = json.loads((ROOT / "scripts" / "scenes" / "default.json").read_text())
+    unpacked = Unpacked(fmu_of(scene, fmi=fmi), tmp_path / "Users" / "José Müller" / "mis modelos", fmi)
+    outputs = ",".join(str(v.valueReference) for v in unpacked.reals)
+    call = ["run", "100", "0.005", outputs]
+    ours = parse(run([str(drivers[fmi][0]), *unpacked.linux_args(), *call]))
+    theirs = parse(run([WINE, str(drivers[fmi][1]), *unpacked.windows_args(), *call], env=wine_env))
+    assert ours.keys() == theirs.keys() and ("step", 100) in ours
+    for key, values in ours.items():
+        for v, a, b in zip(unpacked.reals, values, theirs[key]):
+            assert abs(a - b) <= RELATIVE * max(abs(a), abs(b)), f"{key} {v.name}: linux64 {a!r}, win64 {b!r}"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # scripts/bench.sh [--quick] [--out DIR]
-# The performance report (`rigidfmu report performance`): builds the core and its Google Benchmark
+# The performance report (`scripts/bench.sh`): builds the core and its Google Benchmark
 # (rigid-bench-core) like build_fmu.sh (in build/, or $RIGIDFMU_BUILD), makes sure the
 # peers' venv (.venv-peers, MuJoCo) is there, then runs the core, FMU and MuJoCo
 # benchmarks in one run. Default: writes docs/reports/performance.md and docs/reports/performance/.
@@ -21,7 +21,8 @@ if ! "$cmake_bin" --build "$build" -j"$(nproc)" --target rigid-bench-core >/dev/
     exit 1; }
 fi
 case " $* " in
-  *" --quick "*) ;;
+  *" --quick "*|*" --help "*|*" -h "*) ;;
   *) . "$root/scripts/peers_venv.sh" ;;
 esac
-exec "$root/.venv/bin/python" -m rigidfmu report performance --build "$build" "$@"
+export PYTHONPATH="$root/scripts${PYTHONPATH:+:$PYTHONPATH}"  # the reports (scripts/reports), not in the package
+exec "$root/.venv/bin/python" -m reports.performance --build "$build" "$@"

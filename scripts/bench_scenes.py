@@ -1,7 +1,7 @@
-"""scripts/bench_scenes.py DIR [--tilt A,B]: writes the benchmark scenes (rigidfmu.scenes.bench)
-to DIR, as `python -m rigidfmu.scenes.bench DIR` does (bench/bench_core.cpp names this path)."""
+"""scripts/bench_scenes.py DIR [--tilt A,B]: writes the benchmark scenes (reports.scenes)
+to DIR, as `python -m reports.scenes DIR` does (bench/bench_core.cpp names this path)."""
 import sys
 
-from rigidfmu.scenes.bench import main
+from reports.scenes import main
 
 main(sys.argv[1:])

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # scripts/stress.sh [--quick] [--out DIR] [--only SUBSTRING] [--no-peers] [--jobs N]
-# The stability stress suite (`rigidfmu report stability`): every case with every integration
+# The stability stress suite (`scripts/stress.sh`): every case with every integration
 # method of the FMU, judged by the criteria written in the suite; writes DIR/stability.md
 # (default docs/reports/) and exits 1 when any run FAILS. Builds the core like build_fmu.sh (in
 # build/, or $RIGIDFMU_BUILD), then runs the suite with the venv's python; every argument
@@ -11,4 +11,5 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 [ -n "${RIGIDFMU_SKIP_SETUP:-}" ] || "$root/scripts/setup.sh"
 build="${RIGIDFMU_BUILD:-$root/build}"
 . "$root/scripts/ensure_build.sh"
-exec "$root/.venv/bin/python" -m rigidfmu report stability --build "$build" --no-build "$@"
+export PYTHONPATH="$root/scripts${PYTHONPATH:+:$PYTHONPATH}"  # the reports (scripts/reports), not in the package
+exec "$root/.venv/bin/python" -m reports.stability --build "$build" --no-build "$@"

@@ -1,5 +1,5 @@
-"""The `rigidfmu` command: build, check and simulate scenes, replay runs, make the
-reports and run parameter studies.
+"""The `rigidfmu` command: build, check and simulate scenes, replay runs and run
+parameter studies. (The reports are made from the source tree: scripts/report.sh.)
 
 Conventions as fmpy's command line: results on stdout (the files written), messages
 on stderr, exit status 0 on success, 1 when the work failed (a refused scene, a
@@ -77,27 +77,6 @@ def cmd_replay(args) -> int:
     return 0
 
 
-# `rigidfmu report KIND ...`: the module whose main(argv, prog) makes it (imported only
-# when that report runs: `rigidfmu --help` loads neither numpy, matplotlib nor dask)
-REPORTS = {
-    "accuracy": ("rigidfmu.reports.accuracy",
-                 "the integration methods' error and order on closed-form problems (docs/reports/accuracy.md)"),
-    "stability": ("rigidfmu.reports.stability",
-                  "the stability stress suite: every case with every method (docs/reports/stability.md)"),
-    "performance": ("rigidfmu.reports.performance",
-                    "the core, FMU and MuJoCo benchmarks (docs/reports/performance.md)"),
-    "pruning": ("rigidfmu.reports.pruning", "what leaving out unused physics modules saves per step"),
-    "fmus": ("rigidfmu.reports.fmu_table", "the example FMUs: size, variables, time per step (docs/reports/fmus.md)"),
-}
-
-
-def cmd_report(args) -> int:
-    import importlib
-
-    module = importlib.import_module(REPORTS[args.kind][0])
-    return module.main(args.args, prog=f"rigidfmu report {args.kind}") or 0
-
-
 # The study's own dependencies, pyproject.toml's "study" extra: `pip install rigidfmu`
 # leaves them out, so the command names the install that brings them instead of failing
 # with an ImportError, or only once the runs start (dask and distributed are imported
@@ -164,16 +143,6 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("scene", type=existing_file, metavar="SCENE")
     r.add_argument("-o", "--output", type=pathlib.Path, metavar="OUT.html", help="default: the CSV's name with .html")
     r.set_defaults(run=cmd_replay)
-
-    rep = sub.add_parser("report", help="make a report (accuracy, stability, performance, ...)",
-                         description="Makes one report from the source tree's build; "
-                                     "`rigidfmu report KIND --help` lists its options.\n\n" +
-                                     "\n".join(f"  {k:12s} {what}" for k, (_, what) in REPORTS.items()),
-                         formatter_class=argparse.RawDescriptionHelpFormatter)
-    rep.add_argument("kind", choices=REPORTS, metavar="KIND", help=", ".join(REPORTS))
-    rep.add_argument("args", nargs=argparse.REMAINDER, metavar="...",
-                     help="the report's options (--quick, --out DIR, ...)")
-    rep.set_defaults(run=cmd_report)
 
     st = sub.add_parser("study", help="run a parameter study of an FMU on Dask", add_help=False,
                         description="Runs a study file's runs on Dask; `rigidfmu study --help` gives the format.")

@@ -4,8 +4,7 @@ the growth it measures from the pile of 100 is that of N at equal height (bench.
 import json
 
 import pytest
-
-from rigidfmu.scenes import bench
+from reports import scenes as bench
 
 
 def _without(body, *keys):

@@ -21,8 +21,11 @@ from rigidfmu import cli
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 BUILD = pathlib.Path(os.environ.get("RIGIDFMU_BUILD", ROOT / "build")).resolve()
 ENV = dict(os.environ, RIGIDFMU_SKIP_SETUP="1")
-COMMANDS = ("build", "check", "simulate", "replay", "report", "study")
-REPORTS = ("accuracy", "stability", "performance", "pruning", "fmus")
+COMMANDS = ("build", "check", "simulate", "replay", "study")
+# scripts/report.sh KIND: the reports, made from the source tree (not in the package)
+REPORTS = {"accuracy": "scripts/report_accuracy.sh", "stability": "scripts/stress.sh",
+           "performance": "scripts/bench.sh", "pruning": "scripts/report.sh pruning",
+           "fmus": "scripts/report.sh fmus"}
 
 
 def rigidfmu(*args, python=sys.executable, env=ENV, cwd=ROOT):
@@ -38,19 +41,27 @@ def test_help_of_the_command_and_of_every_subcommand():
         sub = rigidfmu(command, "--help")
         assert sub.returncode == 0, sub.stderr
         assert sub.stdout.startswith(f"usage: rigidfmu {command}")
-    for report in REPORTS:
-        assert report in rigidfmu("report", "--help").stdout
-        sub = rigidfmu("report", report, "--help")
+    assert "report" not in rigidfmu("report", "--help").stdout  # the reports are the source tree's
+
+
+def report(*args):
+    return subprocess.run([str(ROOT / "scripts" / "report.sh"), *map(str, args)], capture_output=True, text=True,
+                          env=ENV, cwd=ROOT)
+
+
+def test_help_of_every_report():
+    for kind, prog in REPORTS.items():
+        sub = report(kind, "--help")
         assert sub.returncode == 0, sub.stderr
-        assert sub.stdout.startswith(f"usage: rigidfmu report {report}"), sub.stdout
+        assert sub.stdout.startswith(f"usage: {prog}"), sub.stdout
         assert "--quick" in sub.stdout
 
 
 def test_report_and_study_usage_errors_and_failures():
-    wrong = rigidfmu("report", "nonsense")
-    assert wrong.returncode == 2 and "invalid choice: 'nonsense'" in wrong.stderr
+    wrong = report("nonsense")
+    assert wrong.returncode == 2 and "usage: scripts/report.sh" in wrong.stderr
     assert rigidfmu("study").returncode == 2
-    assert rigidfmu("report", "accuracy", "--no-such-option").returncode == 2
+    assert report("pruning", "--no-such-option").returncode == 2
     missing = rigidfmu("study", "no-such-study.json")
     assert missing.returncode == 1, missing.stderr
     assert missing.stderr.startswith("rigidfmu: study: no-such-study.json:"), missing.stderr
@@ -215,3 +226,25 @@ def test_the_installed_command_builds_the_same_fmu_outside_the_tree(installed, t
                           "--out", "results"], capture_output=True, text=True, env=env, cwd=work)
     assert run.returncode == 0, run.stderr
     assert (work / "results" / "x.csv").is_file()
+
+
+@pytest.mark.slow
+def test_the_installed_package_is_the_users_alone(installed, tmp_path):
+    """The wheel carries the command, its builders and references, not the lab: no
+    reports, benchmark scenes or peer engines' modules; and every subcommand answers
+    --help from outside the source tree (study names its extra, not installed here)."""
+    venv, env = installed
+    site = subprocess.run([str(venv / "bin" / "python"), "-c", "import rigidfmu, pathlib; "
+                           "print(pathlib.Path(rigidfmu.__file__).parent)"],
+                          capture_output=True, text=True, env=env, cwd=tmp_path, check=True).stdout.strip()
+    package = pathlib.Path(site)
+    modules = {p.relative_to(package).as_posix() for p in package.rglob("*.py")}
+    lab = [m for m in modules if m.startswith(("reports/", "scenes/bench")) or "peers" in m or "mujoco" in m]
+    assert not lab, f"the wheel carries the lab: {lab}"
+    for command in COMMANDS:
+        run = subprocess.run([str(venv / "bin" / "rigidfmu"), command, "--help"], capture_output=True, text=True,
+                             env=env, cwd=tmp_path)
+        if command == "study" and run.returncode == 1:
+            assert "pip install 'rigidfmu[study]'" in run.stderr, run.stderr
+            continue
+        assert run.returncode == 0 and run.stdout.startswith(f"usage: rigidfmu {command}"), run.stderr

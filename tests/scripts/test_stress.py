@@ -1,4 +1,4 @@
-"""The stability stress suite in quick mode (rigidfmu report stability --quick): every case with
+"""The stability stress suite in quick mode (scripts/stress.sh --quick): every case with
 every integration method of the FMU; it must write a table with a row for every case
 and method, and no run may FAIL (a non-finite output or a broken criterion while the
 FMU answered fmi2OK). No timing is asserted."""
@@ -10,10 +10,10 @@ import sys
 
 import pytest
 from fmpy import read_model_description
-
-from rigidfmu.reports import stability as stress  # the case list, to check the table against it
+from reports import stability as stress  # the case list, to check the table against it
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+LAB = os.pathsep.join(filter(None, [str(ROOT / "scripts"), os.environ.get("PYTHONPATH")]))  # scripts/reports
 
 pytestmark = pytest.mark.slow  # a whole script or browser run (pyproject.toml)
 
@@ -27,8 +27,8 @@ def methods_of_the_fmu(fmu_of):
 def test_quick_stress_suite_has_every_case_and_method_and_nothing_fails(tmp_path, fmu_of):
     methods = methods_of_the_fmu(fmu_of)  # builds the core if needed, as the suite would
     assert methods, "no SolverMethod enumeration"
-    env = dict(os.environ, RIGIDFMU_SKIP_SETUP="1")
-    proc = subprocess.run([sys.executable, "-m", "rigidfmu", "report", "stability", "--quick", "--out", str(tmp_path)],
+    env = dict(os.environ, RIGIDFMU_SKIP_SETUP="1", PYTHONPATH=LAB)  # as scripts/stress.sh
+    proc = subprocess.run([sys.executable, "-m", "reports.stability", "--quick", "--out", str(tmp_path)],
                           capture_output=True, text=True, env=env, cwd=ROOT)
     table = tmp_path / "stability.md"
     assert table.exists(), proc.stdout[-3000:] + proc.stderr[-3000:]

@@ -7,7 +7,7 @@ run side by side in one process and printed as ratios to the baseline. The FMUs 
 stepped with 1 s communication steps (1000 internal steps) so that the FMI call is
 amortised. Figures only: nothing here is asserted.
 
-usage: rigidfmu report pruning [--quick] [--build BUILD_DIR]"""
+usage: scripts/report.sh pruning [--quick] [--build BUILD_DIR]"""
 import argparse
 import json
 import os
@@ -17,8 +17,8 @@ import subprocess
 import sys
 import tempfile
 
+from reports.fmu_timing import seconds_per_internal_step
 from rigidfmu.native import SOURCE_ROOT
-from rigidfmu.reports.fmu_timing import seconds_per_internal_step
 
 ROOT = SOURCE_ROOT  # the source tree: its build, scripts and docs
 
@@ -81,4 +81,4 @@ def main(argv=None, prog=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(prog="scripts/report.sh pruning"))

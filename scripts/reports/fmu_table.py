@@ -5,7 +5,7 @@ variables and its cost per internal step (median of repeated runs through fmpy, 
 communication steps). Rewrites the part of docs/reports/fmus.md between the fmu-table
 markers, or prints the table with --print.
 
-usage: rigidfmu report fmus [--print] [--quick] [--build BUILD_DIR]"""
+usage: scripts/report.sh fmus [--print] [--quick] [--build BUILD_DIR]"""
 import argparse
 import os
 import pathlib
@@ -17,8 +17,8 @@ import zipfile
 
 from fmpy import read_model_description
 
+from reports.fmu_timing import seconds_per_internal_step
 from rigidfmu.native import SOURCE_ROOT
-from rigidfmu.reports.fmu_timing import seconds_per_internal_step
 
 ROOT = SOURCE_ROOT  # the source tree: its build, scripts and docs
 BEGIN, END = "<!-- fmu-table:begin -->", "<!-- fmu-table:end -->"
@@ -73,4 +73,4 @@ def main(argv=None, prog=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(prog="scripts/report.sh fmus"))

@@ -1,4 +1,4 @@
-"""MuJoCo beside the stress suite's fast-spin case (python/rigidfmu/reports/stability.py): the same torque-free
+"""MuJoCo beside the stress suite's fast-spin case (scripts/reports/stability.py): the same torque-free
 symmetric top, principal inertia (2, 2, 3) kg m^2, omega0 30 deg off its axis with
 |omega| = (h |omega|) / h, h = 1e-2 s, 1e4 steps, no gravity, for h |omega| in
 {0.1, 1, 3, 6}, with MuJoCo's Euler, RK4 and implicit integrators. Per run: energy drift
@@ -8,7 +8,7 @@ rotation angle at T against the closed-form regular precession, whether MuJoCo w
 and the wall time. Run with the peers' venv (.venv-peers/bin/python); writes JSON for
 stress.py: {case key: {rigidfmu method: text}, "_about": text, "runs": [...]}.
 
-usage: python -m rigidfmu.reports.stability_peers --out FILE [--quick]"""
+usage: python -m reports.stability_peers --out FILE [--quick]"""
 import argparse
 import json
 import math
@@ -17,9 +17,9 @@ import time
 import mujoco
 import numpy as np
 
+from reports.mujoco_free_body import free_body_model
 from rigidfmu.references.quaternion import quat_axis_angle, quat_mul
 from rigidfmu.references.quaternion import rotation_angle as angle
-from rigidfmu.reports.mujoco_free_body import free_body_model
 
 I = np.array([2.0, 2.0, 3.0])
 H = 1e-2
@@ -84,7 +84,7 @@ def main(argv=None, prog=None):
         for method in BESIDE[r["integrator"]]:
             out.setdefault(key, {})[method] = text(r)
     lines = [f"MuJoCo {mujoco.__version__} (PyPI, `.venv-peers`) on the fast-spin case: the same symmetric top, "
-             f"h = {H:g} s, {STEPS} steps (`python/rigidfmu/reports/stability_peers.py`). "
+             f"h = {H:g} s, {STEPS} steps (`scripts/reports/stability_peers.py`). "
              "MuJoCo integrates the free joint's quaternion by the exact exponential of the body angular "
              "velocity and keeps it unit; its Euler is semi-implicit (velocity first). "
              "Shown beside the rigidfmu method of the same family (Euler beside euler and symplecticEuler, "

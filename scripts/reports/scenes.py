@@ -1,5 +1,5 @@
 """The benchmark scenes, written once as scene files so that our core benchmark
-(bench/bench_core.cpp), the FMU benchmark and MuJoCo (rigidfmu.reports.performance_peers)
+(bench/bench_core.cpp), the FMU benchmark and MuJoCo (reports.performance_peers)
 run the very same bodies: free tumbling bodies, and piles of cubes falling on a floor.
 One pile file per count serves the benchmarks that time it over 1 s (BM_Pile) and over
 3 s with its falling and resting windows (BM_PileWindows, BM_PileAwake), and MuJoCo. A
@@ -9,9 +9,9 @@ at the growing height of the cube-root piles. Tumbling bodies are the free bodie
 collisions on: they can collide but, 3 m apart, touch nothing. No scene names a contact
 solver: there is one (the constraint solver).
 
-  python -m rigidfmu.scenes.bench DIR    writes DIR/free_<N>.json, DIR/pile_<N>.json,
+  python -m reports.scenes DIR    writes DIR/free_<N>.json, DIR/pile_<N>.json,
                                          DIR/pile_wide_<N>.json and DIR/tumbling_<N>.json
-  python -m rigidfmu.scenes.bench DIR --tilt A,B
+  python -m reports.scenes DIR --tilt A,B
                                          the same with the piles' cubes tilted by another
                                          pattern (TILT's frequencies replaced by A and B):
                                          a pile is chaotic, and a figure read from one

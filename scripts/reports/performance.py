@@ -7,7 +7,7 @@ here is asserted; the targets are printed with PASS or MISS.
    split into broadphase, narrowphase, response and integration.
 2. FMU (fmpy's FMU2Slave): one fmi2DoStep of one internal step, reading every Real
    output, and the FMI layer's overhead over the core, for 1 and 100 bodies.
-3. MuJoCo (python/rigidfmu/reports/performance_peers.py in .venv-peers): the same piles and free bodies;
+3. MuJoCo (scripts/reports/performance_peers.py in .venv-peers): the same piles and free bodies;
    the free body's orientation error at T against scipy's DOP853 (the accuracy
    report's reference), ours and theirs, so that ratios are quoted at equal accuracy;
    then the pile of 1000 (100 in quick mode) timed again, ours and theirs interleaved
@@ -24,7 +24,7 @@ here is asserted; the targets are printed with PASS or MISS.
 
 Times are CPU times (the machine is shared), medians of repeats.
 
-usage: rigidfmu report performance [--quick] [--out DIR] [--build BUILD_DIR]   (scripts/bench.sh runs it)"""
+usage: scripts/bench.sh [--quick] [--out DIR] [--build BUILD_DIR]"""
 import argparse
 import json
 import math
@@ -39,13 +39,13 @@ import time
 
 import numpy as np
 
+from reports import scenes as bench_scenes
+from reports.accuracy import cpu_name
 from rigidfmu import driver
 from rigidfmu.errors import ReportError
 from rigidfmu.native import SOURCE_ROOT
 from rigidfmu.references.quaternion import rotation_angle
 from rigidfmu.references.torque_free import torque_free_reference
-from rigidfmu.reports.accuracy import cpu_name
-from rigidfmu.scenes import bench as bench_scenes
 
 ROOT = SOURCE_ROOT  # the source tree: its build, scripts and docs
 PEERS_PYTHON = ROOT / ".venv-peers" / "bin" / "python"
@@ -209,7 +209,7 @@ def run_windows(build, scenes, folder, quick):
             runs.append(ours[("windows", big)])
             mine = window_figures(runs[-1])["rest"]["s_per_simulated_s"]
             out = pathlib.Path(folder) / "pile_rest_timing.json"
-            subprocess.run([str(PEERS_PYTHON), "-m", "rigidfmu.reports.performance_peers", str(scenes), str(out),
+            subprocess.run([str(PEERS_PYTHON), "-m", "reports.performance_peers", str(scenes), str(out),
                             "--pile-timing", str(big), "--at-rest"], check=True)
             theirs = json.loads(out.read_text())["s_per_simulated_s"]
             rows.append({"ours": mine, "mujoco": theirs, "ratio": mine / theirs})
@@ -225,7 +225,7 @@ def run_windows(build, scenes, folder, quick):
             {k[1]: window_figures(b) for k, b in sorted(awake.items())})
 
 
-# Other tilt patterns (rigidfmu.scenes.bench --tilt) than the benchmark's: a falling pile
+# Other tilt patterns (reports.scenes --tilt) than the benchmark's: a falling pile
 # is chaotic, so the falling piles are run again under these to show whether a growth
 # read from one fall holds for others.
 OTHER_TILTS = ((1.3, 2.9), (0.7, 1.9), (2.1, 3.1))
@@ -402,7 +402,7 @@ def interleaved_pile_ratio(build, scenes, folder, n, rounds):
         ours, _ = run_core(build, scenes, quick=True, pattern=f"^BM_Pile/{n}/", reps=1)
         mine = pile_table(ours)[n]["s_per_simulated_s"]
         out = pathlib.Path(folder) / "pile_timing.json"
-        subprocess.run([str(PEERS_PYTHON), "-m", "rigidfmu.reports.performance_peers", str(scenes), str(out),
+        subprocess.run([str(PEERS_PYTHON), "-m", "reports.performance_peers", str(scenes), str(out),
                         "--pile-timing", str(n)], check=True)
         theirs = json.loads(out.read_text())["s_per_simulated_s"]
         rows.append({"ours": mine, "mujoco": theirs, "ratio": mine / theirs})
@@ -415,7 +415,7 @@ def run_peers(scenes, folder, quick, T, dts):
     if not PEERS_PYTHON.exists():
         return None
     out = pathlib.Path(folder) / "peers.json"
-    cmd = [str(PEERS_PYTHON), "-m", "rigidfmu.reports.performance_peers", str(scenes), str(out),
+    cmd = [str(PEERS_PYTHON), "-m", "reports.performance_peers", str(scenes), str(out),
            "--T", str(T), "--dts", ",".join(f"{d:g}" for d in dts)] + (["--quick"] if quick else [])
     subprocess.run(cmd, check=True)
     return json.loads(out.read_text())
@@ -671,7 +671,7 @@ def write_markdown(path, r):
       "All times are **CPU times** (the machine is shared, so wall time is noisier), medians "
       f"of {meta['repeats']}; nothing here is asserted by a test — the targets below are "
       "printed with PASS or MISS.\n")
-    w("Scenes: `python/rigidfmu/scenes/bench.py` writes them once, and the core benchmark, the FMUs "
+    w("Scenes: `scripts/reports/scenes.py` writes them once, and the core benchmark, the FMUs "
       "and MuJoCo run the same files. *Free*: N torque-free tumbling boxes, inertia "
       "diag(1, 2, 3) kg m², no gravity, no collisions, h = 1 ms. *Pile*: N cubes of 0.1 m "
       "and 1 kg (restitution 0, friction 0.6) in columns above a floor, falling for 1 s "
@@ -752,7 +752,7 @@ def write_markdown(path, r):
           "without `--quick` creates it).\n")
     else:
         w(f"{peers['engine']} from PyPI in its own venv (`.venv-peers`), run in the same "
-          "invocation by `python/rigidfmu/reports/performance_peers.py`, timed in C (`mj_step` with `nstep`, no "
+          "invocation by `scripts/reports/performance_peers.py`, timed in C (`mj_step` with `nstep`, no "
           "Python between steps), CPU time, medians.\n")
         w("### Piles\n")
         w("Same cubes (free-joint boxes, same size, mass, start poses, friction 0.6), a floor "
@@ -1123,4 +1123,4 @@ def main(argv=None, prog=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(prog="scripts/bench.sh"))

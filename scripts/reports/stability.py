@@ -24,10 +24,10 @@ reference computed here (closed forms, or scipy's DOP853 at rtol 1e-12 on the pr
 own equations), the energy drift, |q| - 1 and the run time of the stepping.
 
 usage:
-  rigidfmu report stability [--out DIR]  the full suite (1e7 steps, long runs, MuJoCo beside
+  scripts/stress.sh [--out DIR]  the full suite (1e7 steps, long runs, MuJoCo beside
                                    the fast-spin case when .venv-peers is there);
                                    writes DIR/stability.md (default docs/reports/)
-  rigidfmu report stability --quick [--out DIR]  every case with every method, short runs
+  scripts/stress.sh --quick [--out DIR]  every case with every method, short runs
   options: --build DIR (default $RIGIDFMU_BUILD or build/), --no-build, --only SUBSTRING
            (cases whose key contains it), --no-peers, --jobs N
 
@@ -48,13 +48,13 @@ from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
+from reports.fmu_build import ensure_core, package
 from rigidfmu import driver
 from rigidfmu.errors import ReportError
 from rigidfmu.native import SOURCE_ROOT
 from rigidfmu.references.heave import heave
 from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle
 from rigidfmu.references.torque_free import torque_free_reference
-from rigidfmu.reports.fmu_build import ensure_core, package
 from rigidfmu.scenes import G, body, free_spin, scene
 
 ROOT = SOURCE_ROOT  # the source tree: its build, scripts and docs
@@ -111,7 +111,7 @@ def spinner_scene(name, inertia, omega, step=1e-3):
 
 
 # ----------------------------------------------------------------------------------
-# loading FMUs (built by rigidfmu.reports.fmu_build) and running them (rigidfmu.driver)
+# loading FMUs (built by reports.fmu_build) and running them (rigidfmu.driver)
 
 class Recorder(driver.Recorder):
     """The driver's logger keeping the first `cap` messages, and besides them the first
@@ -1068,7 +1068,7 @@ def write_table(path, all_cases, methods, rows, quick, peers, elapsed):
     lines = []
     lines.append("# Stability stress suite")
     lines.append("")
-    lines.append(f"Written by `python/rigidfmu/reports/stability.py{' --quick' if quick else ''}` "
+    lines.append(f"Written by `scripts/reports/stability.py{' --quick' if quick else ''}` "
                  "(run it through `./scripts/stress.sh`); "
                  f"{len(all_cases)} cases × {len(names)} methods ({', '.join(names)}, read from the modelDescription's "
                  f"`SolverMethod`), {elapsed:.0f} s in all. "
@@ -1153,7 +1153,7 @@ def write_table(path, all_cases, methods, rows, quick, peers, elapsed):
 
 
 def run_peers(quick, out_json):
-    """MuJoCo on the fast-spin case (python/rigidfmu/reports/stability_peers.py in .venv-peers): a dict
+    """MuJoCo on the fast-spin case (scripts/reports/stability_peers.py in .venv-peers): a dict
     {case key: {method name: text}, '_about': text}, or None when unavailable."""
     py = ROOT / ".venv-peers" / "bin" / "python"
     if not py.exists():
@@ -1165,7 +1165,7 @@ def run_peers(quick, out_json):
             print(f"stress: peers unavailable ({exc})")
             return None
     try:
-        subprocess.run([str(py), "-m", "rigidfmu.reports.stability_peers", "--out", str(out_json)]
+        subprocess.run([str(py), "-m", "reports.stability_peers", "--out", str(out_json)]
                        + (["--quick"] if quick else []), check=True, timeout=900)
         return json.loads(pathlib.Path(out_json).read_text())
     except Exception as exc:
@@ -1225,4 +1225,4 @@ def main(argv=None, prog=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(prog="scripts/stress.sh"))

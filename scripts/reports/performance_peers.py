@@ -1,4 +1,4 @@
-"""MuJoCo on the benchmark scenes of rigidfmu.scenes.bench, run by rigidfmu.reports.performance in
+"""MuJoCo on the benchmark scenes of reports.scenes, run by reports.performance in
 the peers' own venv (.venv-peers, made by scripts/peers_venv.sh) and read back as JSON.
 
 - Piles: each pile_<N>.json converted to MJCF (free-joint boxes of the same size, mass,
@@ -13,13 +13,13 @@ the peers' own venv (.venv-peers, made by scripts/peers_venv.sh) and read back a
 - Free bodies: the free_<N>.json bodies (inertia diag(1, 2, 3), no gravity) with RK4 at
   the scene's step, CPU time per step for N = 1 .. 1000; and the first body alone with
   RK4 (and Euler) at the given steps for T seconds, its final orientation returned so
-  that rigidfmu.reports.performance measures its error against the same reference as ours.
+  that reports.performance measures its error against the same reference as ours.
 
 - With --pile-timing N: only the CPU time of one simulated second of pile_<N> (Euler,
   one repeat), for the performance report's interleaved ratio (ours and MuJoCo's, round by round);
   with --at-rest too, of the third second (after 2 s untimed).
 
-usage: python -m rigidfmu.reports.performance_peers SCENES_DIR OUT.json [--quick] [--T 10] [--dts 1e-2,1e-3]
+usage: python -m reports.performance_peers SCENES_DIR OUT.json [--quick] [--T 10] [--dts 1e-2,1e-3]
                       [--pile-timing N [--at-rest]]"""
 import argparse
 import copy

@@ -1,4 +1,4 @@
-"""Building FMUs from the reports' scripts (rigidfmu.reports.accuracy, rigidfmu.reports.stability), as
+"""Building FMUs from the reports' scripts (reports.accuracy, reports.stability), as
 build_fmu.sh does: the core once, then one packaging per scene content (cached by a
 hash of the scene in `folder`)."""
 import hashlib

@@ -5,7 +5,7 @@ gravity. For each of MuJoCo's integrators and time steps: the orientation error 
 the wall time per step and per simulated second (median of 5 runs). Writes JSON for
 report_accuracy.py to put on its diagrams.
 
-usage: python -m rigidfmu.reports.accuracy_peers [--quick] [--out FILE]"""
+usage: python -m reports.accuracy_peers [--quick] [--out FILE]"""
 import argparse
 import json
 import pathlib
@@ -15,10 +15,10 @@ import time
 import mujoco
 import numpy as np
 
+from reports.mujoco_free_body import free_body_model
 from rigidfmu.native import SOURCE_ROOT
 from rigidfmu.references.quaternion import rotation_angle as angle
 from rigidfmu.references.torque_free import torque_free_reference
-from rigidfmu.reports.mujoco_free_body import free_body_model
 
 I = np.array([1.0, 2.0, 3.0])
 W0 = np.array([0.01, 5.0, 0.01])

@@ -12,12 +12,12 @@ the stepping alone (one instance per configuration, fmi2Reset between runs,
 communication steps of 0.5 s).
 
 usage:
-  rigidfmu report accuracy [--out DIR] [--runs N]          the full report: DIR/accuracy.md and
+  scripts/report_accuracy.sh [--out DIR] [--runs N]          the full report: DIR/accuracy.md and
                                                      DIR/accuracy/*.png (default DIR docs/reports/)
-  rigidfmu report accuracy --quick [--out DIR]             a few steps per method, 1 run each,
+  scripts/report_accuracy.sh --quick [--out DIR]             a few steps per method, 1 run each,
                                                      the smooth problems only; exit status 1
                                                      when a measured order is off
-  rigidfmu report accuracy --scene SCENE.json --tolerance TOL [--stop-time T]
+  scripts/report_accuracy.sh --scene SCENE.json --tolerance TOL [--stop-time T]
                                                      recommends the cheapest method and step
                                                      whose error on that scene is below TOL
 
@@ -38,13 +38,13 @@ import time
 
 import numpy as np
 
+from reports.fmu_build import ensure_core, package
 from rigidfmu import driver
 from rigidfmu.errors import ReportError
 from rigidfmu.native import SOURCE_ROOT
 from rigidfmu.references.heave import heave
 from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_angle
 from rigidfmu.references.torque_free import torque_free_reference
-from rigidfmu.reports.fmu_build import ensure_core, package
 from rigidfmu.scenes import G, body, free_spin, scene
 
 ROOT = SOURCE_ROOT  # the source tree: its build, scripts and docs
@@ -300,7 +300,7 @@ def problems():
 
 
 # ----------------------------------------------------------------------------------
-# running an FMU (built by rigidfmu.reports.fmu_build)
+# running an FMU (built by reports.fmu_build)
 
 class Model(driver.Fmu):
     """One FMU: its methods (from the modelDescription), its variables, one extracted copy."""
@@ -517,7 +517,7 @@ def fmt_x(c, x):
 
 
 def peer_points(problem, peers):
-    """The peers' measurements (python/rigidfmu/reports/accuracy_peers.py, JSON) on this problem."""
+    """The peers' measurements (scripts/reports/accuracy_peers.py, JSON) on this problem."""
     return [p for p in peers if problem.key == "intermediate_axis"
             and p.get("problem", "").startswith("torque-free, intermediate axis")]
 
@@ -598,7 +598,7 @@ def write_markdown(path, results, model_methods, meta):
     L = []
     L.append("# Accuracy of the integration methods")
     L.append("")
-    L.append(f"Written by `python/rigidfmu/reports/accuracy.py{meta['args']}` on {meta['date']} "
+    L.append(f"Written by `scripts/reports/accuracy.py{meta['args']}` on {meta['date']} "
              f"({meta['cpu']}). Do not edit by hand; rerun `./scripts/report_accuracy.sh`.")
     L.append("")
     L.append("Methods found in the FMU's `SolverMethod` enumeration: " +
@@ -918,4 +918,4 @@ def main(argv=None, prog=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(prog="scripts/report_accuracy.sh"))

@@ -242,8 +242,8 @@ std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
   for (const rigid::RestingPush& p : s.data.sleep.resting)
     w.put(static_cast<int32_t>(p.body)), w.put(static_cast<int32_t>(p.surface)), w.put(p.force);
   w.put(static_cast<int64_t>(s.data.steps));
-  w.put(s.data.errorEstimate);
-  w.put(s.data.scratch.adaptiveStep);
+  w.put(s.data.integrator.errorEstimate);
+  w.put(s.data.integrator.adaptiveStep);
   // the awake bodies' contact memory, then the sleeping ones' (readContactMemory parts them)
   w.put(static_cast<uint32_t>(s.data.contactMemory.size() + s.data.sleep.memory.size()));
   for (const auto* memory : {&s.data.contactMemory, &s.data.sleep.memory}) {
@@ -269,7 +269,7 @@ std::string deserialize(const char* bytes, size_t size, const std::string& guid,
   if (std::string why = readBodyStates(r, out, n, ok); !why.empty()) return why;
   ok = ok && readSurfaceLoads(r, out);
   if (std::string why = readRestingPushes(r, out, ok); !why.empty()) return why;
-  ok = ok && r.get(later.steps) && r.get(out.data.errorEstimate) && r.get(out.data.scratch.adaptiveStep);
+  ok = ok && r.get(later.steps) && r.get(out.data.integrator.errorEstimate) && r.get(out.data.integrator.adaptiveStep);
   if (std::string why = readContactMemory(r, out, ok); !why.empty()) return why;
   if (!ok || !r.done())
     return "the serialized state has " + std::to_string(size) + " bytes, not the size of a state of this scene";

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
+#include <utility>
 
 namespace rigidfmu {
 
@@ -10,96 +12,330 @@ namespace {
 
 constexpr char kMagic[8] = {'R', 'I', 'G', 'I', 'D', 'F', 'M', 'U'};
 
+// ---- two archives, one visit ----------------------------------------------------------
+// visitState() names every field of a state once, in the order of the bytes; a Writer
+// appends each field's bytes, a Reader reads them back into it. Doubles, Vec3 (x, y, z)
+// and Quat (w, x, y, z) go as doubles; an integer with the width its call names (i32,
+// u32, u8, i64), whatever its width in memory; a list of variable length as its count
+// (u32), then its elements. Any other type is refused at compile time (a deleted
+// overload), so that no field changes its width unseen.
+
 class Writer {
  public:
+  void operator()(const double& v) { put(v); }
+  void operator()(const rigid::Vec3& v) { put(v[0]), put(v[1]), put(v[2]); }
+  void operator()(const rigid::Quat& q) { put(q.w()), put(q.x()), put(q.y()), put(q.z()); }
+  template <class T>
+  void operator()(const T&) = delete;
+  template <class T>
+  void i32(const T& v) {
+    put(wire<int32_t>(v));
+  }
+  template <class T>
+  void u32(const T& v) {
+    put(wire<uint32_t>(v));
+  }
+  template <class T>
+  void u8(const T& v) {
+    put(wire<uint8_t>(v));
+  }
+  template <class T>
+  void i64(const T& v) {
+    put(wire<int64_t>(v));
+  }
+
+  // The count, then each element; `most` and `corrupt` are the Reader's.
+  template <class T, class Element>
+  void list(const std::vector<T>& v, size_t /*most*/, const char* /*corrupt*/, Element element) {
+    u32(v.size());
+    for (const T& e : v) element(e);
+  }
+  // Two lists as one: the count of both, then the elements of `first` and `second`.
+  template <class T, class Element>
+  void joinedList(const std::vector<T>& first, const std::vector<T>& second, size_t /*most*/, const char* /*corrupt*/,
+                  Element element) {
+    u32(first.size() + second.size());
+    for (const T& e : first) element(e);
+    for (const T& e : second) element(e);
+  }
+
+  // A value's bytes as in memory (little-endian on every target the FMU is built for).
   template <class T>
   void put(const T& v) {
+    static_assert(std::is_arithmetic_v<T>, "only numbers are written as they are in memory");
     const char* p = reinterpret_cast<const char*>(&v);
     bytes.insert(bytes.end(), p, p + sizeof(T));
   }
-  void put(const rigid::Vec3& v) {
-    for (int i = 0; i < 3; ++i) put(v[i]);
-  }
-  void put(const rigid::Quat& q) { put(q.w()), put(q.x()), put(q.y()), put(q.z()); }
+
   std::vector<char> bytes;
+
+ private:
+  template <class Wire, class T>
+  static Wire wire(const T& v) {
+    static_assert(std::is_integral_v<T> || std::is_enum_v<T>, "a number with a fraction goes as a double");
+    return static_cast<Wire>(v);
+  }
 };
 
+// Reads until the bytes run out or a list's count is refused; from then on it reads
+// nothing and every field keeps the value it had.
 class Reader {
  public:
   Reader(const char* p, size_t n) : p_(p), n_(n) {}
+
+  void operator()(double& v) { get(v); }
+  void operator()(rigid::Vec3& v) { get(v[0]), get(v[1]), get(v[2]); }
+  void operator()(rigid::Quat& q) { get(q.w()), get(q.x()), get(q.y()), get(q.z()); }
+  template <class T>
+  void operator()(T&) = delete;
+  template <class T>
+  void i32(T& v) {
+    take<int32_t>(v);
+  }
+  template <class T>
+  void u32(T& v) {
+    take<uint32_t>(v);
+  }
+  template <class T>
+  void u8(T& v) {
+    take<uint8_t>(v);
+  }
+  template <class T>
+  void i64(T& v) {
+    take<int64_t>(v);
+  }
+
+  // The count, refused (`corrupt`) above `most` before anything is allocated, then each
+  // element.
+  template <class T, class Element>
+  void list(std::vector<T>& v, size_t most, const char* corrupt, Element element) {
+    uint32_t count = 0;
+    if (!get(count)) return;
+    if (count > most) {
+      refusal_ = corrupt;
+      return;
+    }
+    v.assign(count, T{});
+    for (T& e : v) element(e);
+  }
+  // Both lists' elements into `first`, `second` emptied: the caller parts them again.
+  template <class T, class Element>
+  void joinedList(std::vector<T>& first, std::vector<T>& second, size_t most, const char* corrupt, Element element) {
+    second.clear();
+    list(first, most, corrupt, element);
+  }
+
+  // A value's bytes into v; false (v as it was) once the bytes ran out or a count was
+  // refused.
   template <class T>
   bool get(T& v) {
-    if (n_ - at_ < sizeof(T)) return false;
+    if (tooShort_ || !refusal_.empty()) return false;
+    if (n_ - at_ < sizeof(T)) {
+      tooShort_ = true;
+      return false;
+    }
     std::memcpy(&v, p_ + at_, sizeof(T));
     at_ += sizeof(T);
     return true;
   }
-  bool get(rigid::Vec3& v) { return get(v[0]) && get(v[1]) && get(v[2]); }
-  bool get(rigid::Quat& q) { return get(q.w()) && get(q.x()) && get(q.y()) && get(q.z()); }
-  bool done() const { return at_ == n_; }
+
+  // Why a count was refused, "" when none was.
+  const std::string& refusal() const { return refusal_; }
+  // Every field read, and no byte left over.
+  bool complete() const { return !tooShort_ && refusal_.empty() && at_ == n_; }
 
  private:
+  template <class Wire, class T>
+  void take(T& v) {
+    static_assert(std::is_integral_v<T> || std::is_enum_v<T>, "a number with a fraction goes as a double");
+    Wire w{};
+    if (get(w)) v = static_cast<T>(w);
+  }
+
   const char* p_;
   size_t n_, at_ = 0;
+  bool tooShort_ = false;
+  std::string refusal_;
 };
 
-// The contact solver's points: each names bodies and a surface of this scene.
-std::string readContactMemory(Reader& r, Snapshot& out, bool& ok) {
-  uint32_t points = 0;
-  ok = ok && r.get(points);
-  if (!ok) return "";
-  const int bodies = static_cast<int>(out.model.bodies.size());
-  const int surfaces = static_cast<int>(out.model.surfaces.size());
-  if (points > 64u * static_cast<uint32_t>(bodies)) return "the serialized state is corrupt (contact points)";
-  out.data.contactMemory.assign(points, rigid::ContactMemory{});
-  for (rigid::ContactMemory& m : out.data.contactMemory) {
-    int32_t a = 0, b = 0, surface = 0;
-    uint8_t sliding = 0;
-    ok = ok && r.get(a) && r.get(b) && r.get(surface) && r.get(m.localA) && r.get(m.normalImpulse) &&
-         r.get(m.tangentImpulse) && r.get(m.twistImpulse) && r.get(sliding);
-    m.sliding = sliding != 0;
-    if (!ok) return "";
-    const bool pair = b >= 0 && b < bodies && surface == -1;
-    const bool onSurface = b == -1 && surface >= 0 && surface < surfaces;
-    if (a < 0 || a >= bodies || !(pair || onSurface))
-      return "the serialized state is corrupt (a contact point names no body or surface of this scene)";
-    m.a = a, m.b = b, m.surface = surface;
+// ---- the state, field by field --------------------------------------------------------
+// One visit for both directions: State is `const Snapshot` when writing and `Snapshot`
+// when reading (Model and Data likewise). Its order is the order of the bytes, format
+// kSnapshotVersion: a change here is a change of the format (test_snapshot.cpp pins it).
+
+// The instance's machine state, times and last step, and the world's solver settings.
+template <class Archive, class State>
+void visitRun(Archive& a, State& s) {
+  a.u32(s.machineState), a.u8(s.wantsToTerminate);
+  a(s.startTime), a(s.time), a(s.lastSuccessfulTime), a(s.lastStepSize);
+  a(s.model.gravity), a.i32(s.model.method);
+  a(s.model.maxStep), a(s.model.tolerance), a(s.model.energyGainLimit);
+}
+
+// The parameters and start values of bodies, surfaces and media; the rest of the model
+// is the scene's, which the GUID names.
+template <class Archive, class Model>
+void visitParameters(Archive& a, Model& m) {
+  for (auto& b : m.bodies) {
+    a(b.mass), a(b.restitution), a(b.staticFriction), a(b.kineticFriction);
+    a(b.start.position), a(b.start.orientation), a(b.start.velocity), a(b.start.angularVelocity);
   }
-  // the sleeping bodies' points are kept apart while they sleep (sleep_state.h)
-  out.data.sleep.memory.clear();
-  rigid::movePoints(out.data.contactMemory, out.data.sleep.memory, [&](const rigid::ContactMemory& m) {
-    return out.data.sleep.asleep[static_cast<size_t>(m.a)] != 0;
-  });
+  for (auto& f : m.surfaces) a(f.staticFriction), a(f.kineticFriction), a(f.restitution);
+  for (auto& f : m.media) a(f.density), a(f.viscosity);
+}
+
+// Body i's state Y, inputs and their rates (with those of its load points, as many as
+// the scene gives it), contact count, energy audit, sleep and contact loads.
+template <class Archive, class Data>
+void visitBody(Archive& a, Data& d, size_t i) {
+  auto& y = d.Y[i];
+  auto &input = d.input[i], &rate = d.inputRate[i];
+  a(y.X), a(y.q), a(y.P), a(y.L);
+  a(input.force), a(input.torque), a(rate.force), a(rate.torque);
+  for (size_t k = 0; k < input.loads.size(); ++k) a(input.loads[k]), a(rate.loads[k]);
+  a.i32(d.contacts[i]);
+  a(d.audit.energy[i]), a(d.audit.reference[i]), a(d.audit.carried[i]);
+  a.u8(d.sleep.asleep[i]), a(d.sleep.stillFor[i]), a.i32(d.sleep.island[i]);
+  a(d.sleep.restForce[i]), a(d.sleep.restTorque[i]);
+  a(d.contactLoads.impulse[i]), a(d.contactLoads.angularImpulse[i]);
+}
+
+template <class Archive, class Push>
+void visitRestingPush(Archive& a, Push& p) {
+  a.i32(p.body), a.i32(p.surface), a(p.force);
+}
+
+template <class Archive, class Point>
+void visitContactPoint(Archive& a, Point& m) {
+  a.i32(m.a), a.i32(m.b), a.i32(m.surface);
+  a(m.localA), a(m.normalImpulse), a(m.tangentImpulse), a(m.twistImpulse), a.u8(m.sliding);
+}
+
+// Every field of a state, in the order of its bytes (after the header).
+template <class Archive, class State>
+void visitState(Archive& a, State& s) {
+  visitRun(a, s);
+  visitParameters(a, s.model);
+  auto& d = s.data;
+  for (size_t i = 0; i < d.Y.size(); ++i) visitBody(a, d, i);
+  for (auto& J : d.contactLoads.surfaceImpulse) a(J);
+  a(d.contactLoads.duration);
+  // lists that a corrupt count would make huge: at most 64 elements a body
+  const size_t most = 64 * d.Y.size();
+  a.list(d.sleep.resting, most, "the serialized state is corrupt (resting forces)",
+         [&](auto& p) { visitRestingPush(a, p); });
+  a.i64(d.steps);
+  a(d.integrator.errorEstimate), a(d.integrator.adaptiveStep);
+  // the awake bodies' contact memory, then the sleeping ones' (acceptContactMemory parts them)
+  a.joinedList(d.contactMemory, d.sleep.memory, most, "the serialized state is corrupt (contact points)",
+               [&](auto& m) { visitContactPoint(a, m); });
+}
+
+// ---- the tripwire ---------------------------------------------------------------------
+// A field added to a struct that a state is made of must be visited above, or be derived
+// or a constant of the scene: these counts stop the build until someone has decided which
+// and updated the count. Fields, not sizeof: a small field may hide in padding, and sizes
+// differ between targets (Eigen's alignment, a 4-byte long on Windows).
+
+// Converts to any field's type; declared only, for unevaluated operands.
+struct AnyField {
+  template <class T>
+  operator T() const;
+};
+
+template <class T, class Indices, class = void>
+struct TakesInitialisers : std::false_type {};
+template <class T, size_t... I>
+struct TakesInitialisers<T, std::index_sequence<I...>, std::void_t<decltype(T{(void(I), AnyField{})...})>>
+    : std::true_type {};
+
+// The number of fields of the aggregate T: the most initialisers that T{...} takes.
+template <class T, size_t N = 0>
+constexpr size_t fieldCount() {
+  if constexpr (TakesInitialisers<T, std::make_index_sequence<N + 1>>::value)
+    return fieldCount<T, N + 1>();
+  else
+    return N;
+}
+
+// clang-format off
+static_assert(fieldCount<Snapshot>() == 8,
+              "a field was added to Snapshot: visit it in visitRun (fmu/snapshot.cpp), then update this count");
+static_assert(fieldCount<rigid::WorldModel>() == 10,
+              "a field was added to rigid::WorldModel: if a parameter sets it, visit it in visitRun "
+              "(fmu/snapshot.cpp); then update this count");
+static_assert(fieldCount<rigid::BodyConstants>() == 15,
+              "a field was added to rigid::BodyConstants: if a parameter sets it, visit it in visitParameters "
+              "(fmu/snapshot.cpp); then update this count");
+static_assert(fieldCount<rigid::BodyStart>() == 4,
+              "a field was added to rigid::BodyStart: visit it in visitParameters (fmu/snapshot.cpp), then update "
+              "this count");
+static_assert(fieldCount<rigid::Surface>() == 12,
+              "a field was added to rigid::Surface: if a parameter sets it, visit it in visitParameters "
+              "(fmu/snapshot.cpp); then update this count");
+static_assert(fieldCount<rigid::Medium>() == 6,
+              "a field was added to rigid::Medium: if a parameter sets it, visit it in visitParameters "
+              "(fmu/snapshot.cpp); then update this count");
+static_assert(fieldCount<rigid::WorldData>() == 15,
+              "a field was added to rigid::WorldData: unless it is derived or scratch, visit it in visitState "
+              "(fmu/snapshot.cpp); then update this count");
+static_assert(fieldCount<rigid::BodyState>() == 4,
+              "a field was added to rigid::BodyState: visit it in visitBody (fmu/snapshot.cpp), then update this "
+              "count");
+static_assert(fieldCount<rigid::BodyInput>() == 3,
+              "a field was added to rigid::BodyInput: visit it in visitBody (fmu/snapshot.cpp), then update this "
+              "count");
+static_assert(fieldCount<rigid::WorldData::EnergyAudit>() == 3,
+              "a field was added to rigid::WorldData::EnergyAudit: visit it in visitBody (fmu/snapshot.cpp), then "
+              "update this count");
+static_assert(fieldCount<rigid::SleepState>() == 9,
+              "a field was added to rigid::SleepState: unless it is derived, visit it in visitBody or visitState "
+              "(fmu/snapshot.cpp); then update this count");
+static_assert(fieldCount<rigid::WorldData::ContactLoads>() == 4,
+              "a field was added to rigid::WorldData::ContactLoads: visit it in visitBody or visitState "
+              "(fmu/snapshot.cpp), then update this count");
+static_assert(fieldCount<rigid::RestingPush>() == 3,
+              "a field was added to rigid::RestingPush: visit it in visitRestingPush (fmu/snapshot.cpp), then "
+              "update this count");
+static_assert(fieldCount<rigid::IntegratorState>() == 2,
+              "a field was added to rigid::IntegratorState: visit it in visitState (fmu/snapshot.cpp), then update "
+              "this count");
+static_assert(fieldCount<rigid::ContactMemory>() == 8,
+              "a field was added to rigid::ContactMemory: visit it in visitContactPoint (fmu/snapshot.cpp), then "
+              "update this count");
+// clang-format on
+
+// ---- the header -----------------------------------------------------------------------
+
+// The magic bytes, the format version, the scene's GUID and its number of bodies.
+void writeHeader(Writer& w, const std::string& guid, size_t bodies) {
+  for (char c : kMagic) w.put(c);
+  w.put(kSnapshotVersion);
+  w.u32(guid.size());
+  for (char c : guid) w.put(c);
+  w.u32(bodies);
+}
+
+// A state of another format or scene is refused before anything else is read.
+std::string readHeader(Reader& r, size_t size, const std::string& guid, size_t bodies) {
+  char magic[8];
+  for (char& c : magic)
+    if (!r.get(c)) return "the serialized state is too short (" + std::to_string(size) + " bytes)";
+  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) return "the bytes are not a rigidfmu state";
+  uint32_t version = 0, guidLength = 0, n = 0;
+  if (!r.get(version) || version != kSnapshotVersion)
+    return "state format version " + std::to_string(version) + ", this FMU reads version " +
+           std::to_string(kSnapshotVersion);
+  if (!r.get(guidLength) || guidLength > 256) return "the serialized state is corrupt (GUID length)";
+  std::string theirs(guidLength, '\0');
+  for (char& c : theirs)
+    if (!r.get(c)) return "the serialized state is too short";
+  if (theirs != guid) return "the state is of another scene (GUID " + theirs + ", this FMU " + guid + ")";
+  if (!r.get(n) || n != bodies) return "the state holds another number of bodies";
   return "";
 }
 
-// The forces that sleeping bodies keep giving surfaces: each names a sleeping body and
-// a surface of this scene.
-std::string readRestingPushes(Reader& r, Snapshot& out, bool& ok) {
-  uint32_t count = 0;
-  ok = ok && r.get(count);
-  if (!ok) return "";
-  const size_t bodies = out.model.bodies.size(), surfaces = out.model.surfaces.size();
-  if (count > 64u * bodies) return "the serialized state is corrupt (resting forces)";
-  out.data.sleep.resting.assign(count, rigid::RestingPush{});
-  for (rigid::RestingPush& p : out.data.sleep.resting) {
-    int32_t body = 0, surface = 0;
-    ok = ok && r.get(body) && r.get(surface) && r.get(p.force);
-    if (!ok) return "";
-    if (body < 0 || static_cast<size_t>(body) >= bodies || surface < 0 || static_cast<size_t>(surface) >= surfaces ||
-        !out.data.sleep.asleep[static_cast<size_t>(body)])
-      return "the serialized state is corrupt (a resting force names no sleeping body or surface of this scene)";
-    p.body = body, p.surface = surface;
-  }
-  return "";
-}
-
-// A body's load forces and their rates (as many as the scene gives it).
-bool readLoads(Reader& r, rigid::BodyInput& input, rigid::BodyInput& rate) {
-  for (size_t k = 0; k < input.loads.size(); ++k)
-    if (!r.get(input.loads[k]) || !r.get(rate.loads[k])) return false;
-  return true;
-}
+// ---- what the reader checks and derives, once every field is read ---------------------
 
 // Friction, densities and viscosities finite and >= 0, restitutions in [0, 1].
 bool materialsInRange(const rigid::WorldModel& m) {
@@ -113,172 +349,93 @@ bool materialsInRange(const rigid::WorldModel& m) {
   return true;
 }
 
-// The magic bytes, the format version, the scene's GUID and its number of bodies: a
-// state of another format or scene is refused before anything else is read.
-std::string readHeader(Reader& r, size_t size, const std::string& guid, size_t bodies, uint32_t& n) {
-  char magic[8];
-  for (char& c : magic)
-    if (!r.get(c)) return "the serialized state is too short (" + std::to_string(size) + " bytes)";
-  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) return "the bytes are not a rigidfmu state";
-  uint32_t version = 0, guidLength = 0;
-  if (!r.get(version) || version != kSnapshotVersion)
-    return "state format version " + std::to_string(version) + ", this FMU reads version " +
-           std::to_string(kSnapshotVersion);
-  if (!r.get(guidLength) || guidLength > 256) return "the serialized state is corrupt (GUID length)";
-  std::string theirs(guidLength, '\0');
-  for (char& c : theirs)
-    if (!r.get(c)) return "the serialized state is too short";
-  if (theirs != guid) return "the state is of another scene (GUID " + theirs + ", this FMU " + guid + ")";
-  if (!r.get(n) || n != bodies) return "the state holds another number of bodies";
-  return "";
-}
-
-// Values applied only once the whole state is read; the method is checked after the
-// size, so that a state of the wrong size is refused for its size.
-struct Deferred {
-  uint32_t machine = 0;
-  uint8_t terminate = 0;
-  int32_t method = 0;
-  int64_t steps = 0;
-};
-
-// The instance's times and the world's solver settings.
-bool readRunState(Reader& r, Snapshot& out, Deferred& later) {
-  return r.get(later.machine) && r.get(later.terminate) && r.get(out.startTime) && r.get(out.time) &&
-         r.get(out.lastSuccessfulTime) && r.get(out.lastStepSize) && r.get(out.model.gravity) && r.get(later.method) &&
-         r.get(out.model.maxStep) && r.get(out.model.tolerance) && r.get(out.model.energyGainLimit);
-}
-
-// The parameters and start values of bodies, surfaces and media, each within its range.
-std::string readParameters(Reader& r, Snapshot& out, bool& ok) {
-  for (rigid::BodyConstants& b : out.model.bodies) {
-    double mass = 0.0;
-    ok = ok && r.get(mass) && r.get(b.restitution) && r.get(b.staticFriction) && r.get(b.kineticFriction) &&
-         r.get(b.start.position) && r.get(b.start.orientation) && r.get(b.start.velocity) &&
-         r.get(b.start.angularVelocity);
-    if (ok && !(mass > 0.0 && std::isfinite(mass))) return "the state holds a mass that is not > 0";
-    if (ok) rigid::setMass(b, mass);  // Ibody follows, as when the parameter is set
+// Masses > 0, each then set again so that Ibody follows, as when the parameter is set;
+// materials in range.
+std::string acceptParameters(rigid::WorldModel& m) {
+  for (rigid::BodyConstants& b : m.bodies) {
+    if (!(b.mass > 0.0 && std::isfinite(b.mass))) return "the state holds a mass that is not > 0";
+    rigid::setMass(b, b.mass);
   }
-  for (rigid::Surface& f : out.model.surfaces)
-    ok = ok && r.get(f.staticFriction) && r.get(f.kineticFriction) && r.get(f.restitution);
-  for (rigid::Medium& m : out.model.media) ok = ok && r.get(m.density) && r.get(m.viscosity);
-  if (ok && !materialsInRange(out.model))
-    return "the state holds a friction, restitution or fluid property out of range";
+  if (!materialsInRange(m)) return "the state holds a friction, restitution or fluid property out of range";
   return "";
 }
 
-// Each body's state, inputs, contact count, energy audit, sleep and contact loads; a
-// body asleep exactly when it is in an island of this scene.
-std::string readBodyStates(Reader& r, Snapshot& out, uint32_t n, bool& ok) {
-  for (uint32_t i = 0; i < n && ok; ++i) {
-    rigid::BodyState& y = out.data.Y[i];
-    int32_t contacts = 0, island = 0;
-    uint8_t asleep = 0;
-    ok = r.get(y.X) && r.get(y.q) && r.get(y.P) && r.get(y.L) && r.get(out.data.input[i].force) &&
-         r.get(out.data.input[i].torque) && r.get(out.data.inputRate[i].force) && r.get(out.data.inputRate[i].torque) &&
-         readLoads(r, out.data.input[i], out.data.inputRate[i]) && r.get(contacts) && r.get(out.data.audit.energy[i]) &&
-         r.get(out.data.audit.reference[i]) && r.get(out.data.audit.carried[i]) && r.get(asleep) &&
-         r.get(out.data.sleep.stillFor[i]) && r.get(island) && r.get(out.data.sleep.restForce[i]) &&
-         r.get(out.data.sleep.restTorque[i]) && r.get(out.data.contactLoads.impulse[i]) &&
-         r.get(out.data.contactLoads.angularImpulse[i]);
-    out.data.contacts[i] = contacts;
-    if (ok && (asleep > 1 || island < -1 || island >= static_cast<int32_t>(n) || (asleep == 1) != (island >= 0)))
+// Each body asleep exactly when it is in an island of this scene; the count of sleepers
+// and their bounding boxes follow from the flags.
+std::string acceptSleep(rigid::SleepState& sleep) {
+  const int n = static_cast<int>(sleep.asleep.size());
+  for (int i = 0; i < n; ++i) {
+    const char asleep = sleep.asleep[static_cast<size_t>(i)];
+    const int island = sleep.island[static_cast<size_t>(i)];
+    if ((asleep != 0 && asleep != 1) || island < -1 || island >= n || (asleep == 1) != (island >= 0))
       return "the serialized state is corrupt (sleep of body " + std::to_string(i) + ")";
-    out.data.sleep.asleep[i] = static_cast<char>(asleep);
-    out.data.sleep.island[i] = island;
   }
-  out.data.sleep.sleeping = static_cast<int>(std::count(out.data.sleep.asleep.begin(), out.data.sleep.asleep.end(), 1));
-  out.data.sleep.boxes.reset();  // derived from the flags and poses just read
+  sleep.sleeping = static_cast<int>(std::count(sleep.asleep.begin(), sleep.asleep.end(), 1));
+  sleep.boxes.reset();  // derived from the flags and poses just read
   return "";
 }
 
-// The surfaces' contact impulses of the last communication step, and its length.
-bool readSurfaceLoads(Reader& r, Snapshot& out) {
-  for (rigid::Vec3& J : out.data.contactLoads.surfaceImpulse)
-    if (!r.get(J)) return false;
-  return r.get(out.data.contactLoads.duration);
+// The forces that sleeping bodies keep giving surfaces: each names a sleeping body and
+// a surface of this scene.
+std::string acceptRestingPushes(const rigid::WorldModel& m, const rigid::SleepState& sleep) {
+  const size_t bodies = m.bodies.size(), surfaces = m.surfaces.size();
+  for (const rigid::RestingPush& p : sleep.resting)
+    if (p.body < 0 || static_cast<size_t>(p.body) >= bodies || p.surface < 0 ||
+        static_cast<size_t>(p.surface) >= surfaces || !sleep.asleep[static_cast<size_t>(p.body)])
+      return "the serialized state is corrupt (a resting force names no sleeping body or surface of this scene)";
+  return "";
+}
+
+// The contact solver's points: each names bodies and a surface of this scene. The
+// sleeping bodies' points are then set apart, as they are kept while they sleep
+// (sleep_state.h).
+std::string acceptContactMemory(const rigid::WorldModel& m, rigid::WorldData& d) {
+  const int bodies = static_cast<int>(m.bodies.size()), surfaces = static_cast<int>(m.surfaces.size());
+  for (const rigid::ContactMemory& p : d.contactMemory) {
+    const bool pair = p.b >= 0 && p.b < bodies && p.surface == -1;
+    const bool onSurface = p.b == -1 && p.surface >= 0 && p.surface < surfaces;
+    if (p.a < 0 || p.a >= bodies || !(pair || onSurface))
+      return "the serialized state is corrupt (a contact point names no body or surface of this scene)";
+  }
+  rigid::movePoints(d.contactMemory, d.sleep.memory,
+                    [&](const rigid::ContactMemory& p) { return d.sleep.asleep[static_cast<size_t>(p.a)] != 0; });
+  return "";
+}
+
+// Checks the values read and derives what follows from them, in the order of the bytes
+// but for the method, last. Made only once every byte is read, so that a state of the
+// wrong size is refused for its size, whatever values it holds.
+std::string accept(Snapshot& out) {
+  std::string why = acceptParameters(out.model);
+  if (why.empty()) why = acceptSleep(out.data.sleep);
+  if (why.empty()) why = acceptRestingPushes(out.model, out.data.sleep);
+  if (why.empty()) why = acceptContactMemory(out.model, out.data);
+  const int method = static_cast<int>(out.model.method);
+  if (why.empty() && !rigid::methodFromValue(method))
+    why = "the state holds an unknown solver.method " + std::to_string(method);
+  return why;
 }
 
 }  // namespace
 
 std::vector<char> serialize(const Snapshot& s, const std::string& guid) {
   Writer w;
-  for (char c : kMagic) w.put(c);
-  w.put(kSnapshotVersion);
-  w.put(static_cast<uint32_t>(guid.size()));
-  for (char c : guid) w.put(c);
-  const uint32_t n = static_cast<uint32_t>(s.model.bodies.size());
-  w.put(n);
-  w.put(static_cast<uint32_t>(s.machineState));
-  w.put(static_cast<uint8_t>(s.wantsToTerminate));
-  w.put(s.startTime), w.put(s.time), w.put(s.lastSuccessfulTime), w.put(s.lastStepSize);
-  w.put(s.model.gravity);
-  w.put(static_cast<int32_t>(s.model.method));
-  w.put(s.model.maxStep), w.put(s.model.tolerance), w.put(s.model.energyGainLimit);
-  for (const rigid::BodyConstants& b : s.model.bodies) {
-    w.put(b.mass), w.put(b.restitution), w.put(b.staticFriction), w.put(b.kineticFriction);
-    w.put(b.start.position), w.put(b.start.orientation), w.put(b.start.velocity), w.put(b.start.angularVelocity);
-  }
-  for (const rigid::Surface& f : s.model.surfaces)
-    w.put(f.staticFriction), w.put(f.kineticFriction), w.put(f.restitution);
-  for (const rigid::Medium& m : s.model.media) w.put(m.density), w.put(m.viscosity);
-  for (uint32_t i = 0; i < n; ++i) {
-    const rigid::BodyState& y = s.data.Y[i];
-    w.put(y.X), w.put(y.q), w.put(y.P), w.put(y.L);
-    w.put(s.data.input[i].force), w.put(s.data.input[i].torque);
-    w.put(s.data.inputRate[i].force), w.put(s.data.inputRate[i].torque);
-    for (size_t k = 0; k < s.data.input[i].loads.size(); ++k)
-      w.put(s.data.input[i].loads[k]), w.put(s.data.inputRate[i].loads[k]);
-    w.put(static_cast<int32_t>(s.data.contacts[i]));
-    w.put(s.data.audit.energy[i]), w.put(s.data.audit.reference[i]), w.put(s.data.audit.carried[i]);
-    w.put(static_cast<uint8_t>(s.data.sleep.asleep[i])), w.put(s.data.sleep.stillFor[i]);
-    w.put(static_cast<int32_t>(s.data.sleep.island[i]));
-    w.put(s.data.sleep.restForce[i]), w.put(s.data.sleep.restTorque[i]);
-    w.put(s.data.contactLoads.impulse[i]), w.put(s.data.contactLoads.angularImpulse[i]);
-  }
-  for (const rigid::Vec3& J : s.data.contactLoads.surfaceImpulse) w.put(J);
-  w.put(s.data.contactLoads.duration);
-  w.put(static_cast<uint32_t>(s.data.sleep.resting.size()));
-  for (const rigid::RestingPush& p : s.data.sleep.resting)
-    w.put(static_cast<int32_t>(p.body)), w.put(static_cast<int32_t>(p.surface)), w.put(p.force);
-  w.put(static_cast<int64_t>(s.data.steps));
-  w.put(s.data.errorEstimate);
-  w.put(s.data.scratch.adaptiveStep);
-  // the awake bodies' contact memory, then the sleeping ones' (readContactMemory parts them)
-  w.put(static_cast<uint32_t>(s.data.contactMemory.size() + s.data.sleep.memory.size()));
-  for (const auto* memory : {&s.data.contactMemory, &s.data.sleep.memory}) {
-    for (const rigid::ContactMemory& m : *memory) {
-      w.put(static_cast<int32_t>(m.a)), w.put(static_cast<int32_t>(m.b)), w.put(static_cast<int32_t>(m.surface));
-      w.put(m.localA), w.put(m.normalImpulse), w.put(m.tangentImpulse), w.put(m.twistImpulse),
-          w.put(static_cast<uint8_t>(m.sliding));
-    }
-  }
+  writeHeader(w, guid, s.model.bodies.size());
+  visitState(w, s);
   return w.bytes;
 }
 
 std::string deserialize(const char* bytes, size_t size, const std::string& guid, Snapshot& s) {
   if (!bytes) return "the serialized state is NULL";
   Reader r(bytes, size);
-  uint32_t n = 0;
-  if (std::string why = readHeader(r, size, guid, s.model.bodies.size(), n); !why.empty()) return why;
+  if (std::string why = readHeader(r, size, guid, s.model.bodies.size()); !why.empty()) return why;
   // read into a copy: `s` changes only when the whole state is accepted
   Snapshot out = s;
-  Deferred later;
-  bool ok = readRunState(r, out, later);
-  if (std::string why = readParameters(r, out, ok); !why.empty()) return why;
-  if (std::string why = readBodyStates(r, out, n, ok); !why.empty()) return why;
-  ok = ok && readSurfaceLoads(r, out);
-  if (std::string why = readRestingPushes(r, out, ok); !why.empty()) return why;
-  ok = ok && r.get(later.steps) && r.get(out.data.errorEstimate) && r.get(out.data.scratch.adaptiveStep);
-  if (std::string why = readContactMemory(r, out, ok); !why.empty()) return why;
-  if (!ok || !r.done())
+  visitState(r, out);
+  if (!r.refusal().empty()) return r.refusal();
+  if (!r.complete())
     return "the serialized state has " + std::to_string(size) + " bytes, not the size of a state of this scene";
-  const auto m = rigid::methodFromValue(later.method);
-  if (!m) return "the state holds an unknown solver.method " + std::to_string(later.method);
-  out.model.method = *m;
-  out.data.steps = later.steps;
-  out.machineState = later.machine;
-  out.wantsToTerminate = later.terminate != 0;
+  if (std::string why = accept(out); !why.empty()) return why;
   rigid::refreshAuxiliaries(out.model, out.data);
   s = std::move(out);
   return "";

@@ -19,10 +19,12 @@ struct Snapshot {
   double lastStepSize = 0.0;  // s, the last communication step (directional derivatives)
 };
 
-// Bumped whenever the layout below changes: an old serialisation is then refused.
+// Bumped whenever the layout of the bytes changes (visitState in snapshot.cpp, which
+// both writes and reads them): an old serialisation is then refused.
 // 2: input derivatives; 3: energy audit, last step; 4: the contact solver's memory;
 // 5: which bodies sleep; 6: friction, surfaces' restitution, media's density and
-// viscosity, forces at load points; 7: the contact loads, and those of sleeping bodies
+// viscosity, forces at load points; 7: the contact loads, and those of sleeping bodies;
+// 8: the contact points' twist impulse
 inline constexpr uint32_t kSnapshotVersion = 8;
 
 // The bytes of a snapshot of a scene with this GUID.

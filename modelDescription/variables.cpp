@@ -257,7 +257,7 @@ double readValue(const Variable& v, const WorldModel& model, const WorldData& da
     case Quantity::SolverTolerance: return model.tolerance;
     case Quantity::SolverEnergyGainLimit: return model.energyGainLimit;
     case Quantity::SolverSteps: return setup ? 0.0 : static_cast<double>(data.steps);
-    case Quantity::SolverErrorEstimate: return setup ? 0.0 : data.errorEstimate;
+    case Quantity::SolverErrorEstimate: return setup ? 0.0 : data.integrator.errorEstimate;
     case Quantity::Mass: return model.bodies[b].mass;
     case Quantity::Restitution: return model.bodies[b].restitution;
     case Quantity::StaticFriction: return model.bodies[b].staticFriction;

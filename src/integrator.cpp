@@ -338,15 +338,16 @@ double scaledError(const std::vector<int>& bodies, const std::vector<BodyState>&
 int dopri5Adaptive(const WorldModel& m, WorldData& d, const std::vector<int>& bodies, double h,
                    std::vector<BodyState>& next) {
   Scratch& s = d.scratch;
+  IntegratorState& state = d.integrator;
   if (m.tolerance <= 0.0) {
     dopri5Step(m, d, bodies, d.Y, h, next, s.y4);
-    d.errorEstimate = 0.0;
+    state.errorEstimate = 0.0;
     return 1;
   }
   for (int i : bodies) s.y[i] = d.Y[i];
   double t = 0.0;
-  double trial = s.adaptiveStep > 0.0 ? std::min(s.adaptiveStep, h) : h;
-  double memory = s.adaptiveStep;  // the controller's step, not one shortened to end at h
+  double trial = state.adaptiveStep > 0.0 ? std::min(state.adaptiveStep, h) : h;
+  double memory = state.adaptiveStep;  // the controller's step, not one shortened to end at h
   int accepted = 0;
   while (t < h) {
     const bool last = trial >= h - t;
@@ -360,14 +361,14 @@ int dopri5Adaptive(const WorldModel& m, WorldData& d, const std::vector<int>& bo
       continue;
     }
     ++accepted;
-    d.errorEstimate = err * m.tolerance;
+    state.errorEstimate = err * m.tolerance;
     for (int i : bodies) next[i].q.normalize();
     std::swap(s.y, next);
     t = last ? h : t + step;
     trial = step * std::min(5.0, std::max(0.2, factor));
     if (!last || memory <= 0.0) memory = trial;
   }
-  s.adaptiveStep = memory;
+  state.adaptiveStep = memory;
   for (int i : bodies) next[i] = s.y[i];
   return accepted;
 }

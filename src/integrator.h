@@ -42,11 +42,19 @@ std::optional<Method> methodFromName(const std::string& name);
 std::optional<Method> methodFromValue(int value);
 const char* methodName(Method method);
 
+// What the integrator carries from one internal step to the next: part of a run's
+// state (WorldData::integrator), so the FMU state saves it and a restored run takes the
+// same steps, bitwise.
+struct IntegratorState {
+  double adaptiveStep = 0.0;   // s, the adaptive method's next trial step (0: none yet)
+  double errorEstimate = 0.0;  // 1, its last accepted step's local error estimate (0 for fixed steps)
+};
+
 // Y(t + h) of the listed bodies (ascending indices) into `next` (q not yet normalised);
 // the other bodies' entries are left as they are (sleeping bodies are not integrated).
 // Reads data.Y and data.input; uses data.scratch and data.aux as work space. Returns
 // the number of steps it took: 1, or the accepted steps of the adaptive method, which
-// also sets data.errorEstimate; 0 when the adaptive method cannot meet its tolerance.
+// also sets data.integrator; 0 when the adaptive method cannot meet its tolerance.
 int integrate(const WorldModel& model, WorldData& data, const std::vector<int>& bodies, double h,
               std::vector<BodyState>& next);
 

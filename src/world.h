@@ -34,7 +34,9 @@ struct WorldModel {
   std::vector<Medium> media;
 };
 
-// Work buffers of the integrators, sized once so that a step allocates nothing.
+// Work buffers of the integrators, sized once so that a step allocates nothing. They
+// hold no state of the run (awake is derived from the sleep flags at each step): what
+// one step hands the next, the adaptive step included, is in WorldData.
 struct Scratch {
   std::vector<BodyState> stage;  // Y + c h k, a Runge-Kutta stage
   std::vector<BodyState> next;   // Y(t + h) before it is accepted
@@ -43,7 +45,6 @@ struct Scratch {
   std::vector<Vec3> u;           // Lie-group stages: rotation vector of each body
   std::vector<int> awake;        // the bodies not asleep, ascending: what a step moves, checks and refreshes
   std::vector<int> held, felt;   // RK4: bodies whose forces are held over the step, and the others
-  double adaptiveStep = 0.0;     // s, the adaptive method's next trial step (0: none yet)
 };
 
 // The stages of a step, in the order step() runs them: the plan of sub-steps (an
@@ -90,8 +91,10 @@ struct WorldData {
   struct EnergyAudit {
     std::vector<double> energy, reference, carried;
   } audit;
-  long steps = 0;              // internal steps taken since the counter was last cleared
-  double errorEstimate = 0.0;  // the adaptive method's last local error estimate (1)
+  long steps = 0;  // internal steps taken since the counter was last cleared
+  // The adaptive method's next step and last error estimate (integrator.h). Part of the
+  // FMU state.
+  IntegratorState integrator;
   // Body-body collision detection, when at least two bodies can collide; shared by
   // copies of the data (it holds no state between steps but FCL's objects).
   std::shared_ptr<CollisionCache> collision;

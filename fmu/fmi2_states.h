@@ -1,7 +1,7 @@
 // The FMI 2.0 co-simulation state machine as one table: for each function, the states
 // it may be called in (FMI 2.0.4, section 4.2.4, the table of calling sequences for
 // co-simulation). A call in any other state is refused with fmi2Error and a message
-// naming the function and the state (Instance::allowedIn). fmi2Instantiate,
+// naming the function and the state (Instance::enter). fmi2Instantiate,
 // fmi2FreeInstance and the platform/version queries take no instance and are always
 // allowed.
 #pragma once

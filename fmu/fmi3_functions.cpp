@@ -1,67 +1,72 @@
-// The FMI 3.0 Co-Simulation entry points, over the same Instance as the FMI 2 ones:
-// one state machine (fmi3_states.h names the states each function may be called in),
-// one step, one snapshot format. What differs is only the calling convention: the
-// instance handle carries the FMI 3 logger (the Instance logs through an FMI 2
-// callback that forwards to it), the resource path is turned into the file URI the
-// Instance reads, and Enumeration variables travel through fmi3Get/SetInt64.
-// Every variable is a scalar (docs/scene-format.md, "FMI 3.0"): value references,
-// names, units and descriptions are those of the FMI 2 FMU. With the master's
-// permission (earlyReturnAllowed), fmi3DoStep returns early at the first bouncing
-// impact inside the step: earlyReturn and lastSuccessfulTime = the impact's instant.
+// The FMI 3.0 Co-Simulation entry points: the FMI 3 names, types and statuses mapped
+// onto the version-neutral Instance, a peer of fmi2_functions.cpp. One state machine
+// (fmi3_states.h names the states each function may be called in), one step, one
+// snapshot format; what differs is the calling convention: the instance handle carries
+// the master's log message callback (wrapped as the Instance's logger), the resource
+// path is turned into the file URI the Instance reads, and Enumeration variables travel
+// through fmi3Get/SetInt64. Every variable is a scalar (docs/scene-format.md, "FMI
+// 3.0"): value references, names, units and descriptions are those of the FMI 2 FMU.
+// With the master's permission (earlyReturnAllowed), fmi3DoStep returns early at the
+// first bouncing impact inside the step: earlyReturn and lastSuccessfulTime = the
+// impact's instant.
 #include <cctype>
-#include <cstdarg>
-#include <cstdio>
-#include <cstdlib>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "entry_guard.h"
 #include "fmi3Functions.h"
 #include "fmi3_states.h"
 #include "instance.h"
+#include "status.h"
 
 using rigidfmu::BaseType;
 using rigidfmu::Instance;
+using rigidfmu::Status;
 namespace allowed = rigidfmu::fmi3_allowed;
 
-static_assert(int(fmi3OK) == int(fmi2OK) && int(fmi3Warning) == int(fmi2Warning) &&
-                  int(fmi3Discard) == int(fmi2Discard) && int(fmi3Error) == int(fmi2Error) &&
-                  int(fmi3Fatal) == int(fmi2Fatal),
-              "FMI 3 statuses are FMI 2's, value for value");
-static_assert(sizeof(fmi3ValueReference) == sizeof(fmi2ValueReference), "value references of one size");
-static_assert(sizeof(fmi3Int32) == sizeof(fmi2Integer), "Int32 is FMI 2's Integer");
+static_assert(std::is_same_v<fmi3ValueReference, uint32_t> && std::is_same_v<fmi3Int32, int32_t> &&
+                  std::is_same_v<fmi3Float64, double>,
+              "the Instance's value types");
+static_assert(std::is_same_v<fmi3FMUState, void*>, "FMU states are opaque pointers");
 
 namespace {
 
-// What fmi3InstantiateCoSimulation hands out: the Instance and the master's logger.
+// What fmi3InstantiateCoSimulation hands out: the Instance and the master's permission.
 struct Fmi3Instance {
-  fmi3InstanceEnvironment environment = nullptr;
-  fmi3LogMessageCallback logMessage = nullptr;
-  std::string name;
   bool earlyReturnAllowed = false;  // the master's permission (fmi3InstantiateCoSimulation)
   std::unique_ptr<Instance> core;
 };
 
-// The Instance's FMI 2 logger: the formatted message to the FMI 3 one.
-void forwardLog(fmi2ComponentEnvironment env, fmi2String, fmi2Status status, fmi2String category, fmi2String message,
-                ...) {
-  const auto* fmu = static_cast<const Fmi3Instance*>(env);
-  if (!fmu || !fmu->logMessage) return;
-  va_list args;
-  va_start(args, message);
-  va_list again;
-  va_copy(again, args);
-  const int n = std::vsnprintf(nullptr, 0, message, args);
-  va_end(args);
-  std::string text(n > 0 ? static_cast<size_t>(n) : 0, '\0');
-  if (n > 0) std::vsnprintf(text.data(), text.size() + 1, message, again);
-  va_end(again);
-  fmu->logMessage(fmu->environment, static_cast<fmi3Status>(status), category, text.c_str());
+fmi3Status toFmi3(Status status) {
+  switch (status) {
+    case Status::OK: return fmi3OK;
+    case Status::Warning: return fmi3Warning;
+    case Status::Discard: return fmi3Discard;
+    case Status::Error: return fmi3Error;
+    case Status::Fatal: return fmi3Fatal;
+  }
+  return fmi3Fatal;
 }
 
-void* allocate(size_t n, size_t size) { return std::calloc(n, size); }
+// The instance's messages to the master's fmi3LogMessageCallback.
+rigidfmu::Logger loggerOf(fmi3InstanceEnvironment environment, fmi3LogMessageCallback logMessage) {
+  if (!logMessage) return nullptr;
+  return [environment, logMessage](Status status, const char* category, const std::string& message) {
+    logMessage(environment, toFmi3(status), category, message.c_str());
+  };
+}
+
+// What a variable of this type is and its accessors (an FMI 3 accessor is typed: Int32
+// for Integer variables, Int64 for the Enumeration).
+const char* typeAdvice(BaseType t) {
+  return t == BaseType::Real      ? "a Float64, use fmi3Get/SetFloat64"
+         : t == BaseType::Integer ? "an Int32, use fmi3Get/SetInt32"
+                                  : "an Enumeration, use fmi3Get/SetInt64";
+}
 
 // FMI 3 gives the resources as a path (ending in a separator); the Instance reads a
 // file URI: the path's bytes percent-encoded where a URI must (RFC 3986), '\' as '/'.
@@ -85,50 +90,42 @@ std::string fileUri(const char* path) {
 
 Fmi3Instance* fmuOf(fmi3Instance instance) { return static_cast<Fmi3Instance*>(instance); }
 
-// guarded() of the FMI 2 entry points, for an FMI 3 instance handle.
+Instance* coreOf(fmi3Instance instance) {
+  Fmi3Instance* fmu = fmuOf(instance);
+  return fmu ? fmu->core.get() : nullptr;
+}
+
 template <class Body>
 fmi3Status run(fmi3Instance instance, const char* function, unsigned states, Body body) {
-  Fmi3Instance* fmu = fmuOf(instance);
-  if (!fmu || !fmu->core) return fmi3Error;
-  fmu->core->nameCall(function);
-  return static_cast<fmi3Status>(rigidfmu::guarded(fmu->core.get(), function, states, body));
+  return toFmi3(rigidfmu::guarded(coreOf(instance), function, states, body));
 }
 
 fmi3Status unsupported(fmi3Instance instance, const char* function, const char* why) {
-  Fmi3Instance* fmu = fmuOf(instance);
-  if (!fmu || !fmu->core) return fmi3Error;
-  return static_cast<fmi3Status>(rigidfmu::unsupported(fmu->core.get(), function, allowed::Unsupported, why));
+  return toFmi3(rigidfmu::unsupported(coreOf(instance), function, allowed::Unsupported, why));
 }
 
 // nValues must equal nValueReferences: every variable is a scalar.
-bool scalars(Instance& i, const char* function, size_t nvr, size_t nValues) {
+bool scalars(Instance& i, size_t nvr, size_t nValues) {
   if (nvr == nValues) return true;
-  i.error(std::string(function) + ": nValues = " + std::to_string(nValues) +
-          " but nValueReferences = " + std::to_string(nvr) + ": every variable of this FMU is a scalar");
+  i.error("nValues = " + std::to_string(nValues) + " but nValueReferences = " + std::to_string(nvr) +
+          ": every variable of this FMU is a scalar");
   return false;
-}
-
-const char* useFor(BaseType t) {
-  return t == BaseType::Real      ? "is a Float64, use fmi3Get/SetFloat64"
-         : t == BaseType::Integer ? "is an Int32, use fmi3Get/SetInt32"
-                                  : "is an Enumeration, use fmi3Get/SetInt64";
 }
 
 // Whether every reference is a variable of `type` (FMI 3 accessors are typed: Int32
 // for Integer variables, Int64 for the Enumeration); refuses the first that is not.
-bool allOfType(Instance& i, const char* function, const fmi3ValueReference vr[], size_t n, BaseType type,
-               const char* use) {
+bool allOfType(Instance& i, const fmi3ValueReference vr[], size_t n, BaseType type, const char* use) {
   const auto& vars = i.variables();
   for (size_t k = 0; k < n; ++k) {
     if (vr[k] >= vars.size()) {
-      i.error(std::string(function) + ": unknown value reference " + std::to_string(vr[k]) + " (this FMU has 0.." +
+      i.error("unknown value reference " + std::to_string(vr[k]) + " (this FMU has 0.." +
               std::to_string(vars.size() - 1) + ")");
       return false;
     }
     const auto& v = vars[vr[k]];
     if (v.type != type) {
-      i.error(std::string(function) + ": value reference " + std::to_string(vr[k]) + " (" + v.name + ") " + use +
-              ": it " + useFor(v.type));
+      i.error("value reference " + std::to_string(vr[k]) + " (" + v.name + ") " + use + ": it is " +
+              typeAdvice(v.type));
       return false;
     }
   }
@@ -138,7 +135,7 @@ bool allOfType(Instance& i, const char* function, const fmi3ValueReference vr[],
 // Accessors of types this FMU has no variables of: every reference is unknown.
 fmi3Status noVariables(fmi3Instance instance, const char* function, unsigned states, const fmi3ValueReference vr[],
                        size_t n) {
-  return run(instance, function, states, [&](Instance& i) { return i.noVariablesOfType(function, vr, n); });
+  return run(instance, function, states, [&](Instance& i) { return i.noVariablesOfType(vr, n); });
 }
 
 }  // namespace
@@ -150,7 +147,7 @@ const char* fmi3GetVersion(void) { return fmi3Version; }
 fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, size_t nCategories,
                                const fmi3String categories[]) {
   return run(instance, "fmi3SetDebugLogging", allowed::SetDebugLogging,
-             [&](Instance& i) { return i.setDebugLogging(loggingOn ? fmi2True : fmi2False, nCategories, categories); });
+             [&](Instance& i) { return i.setDebugLogging(loggingOn, nCategories, categories); });
 }
 
 fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String, fmi3String, fmi3Boolean, fmi3Boolean,
@@ -180,13 +177,11 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
       return refuse("this FMU provides no intermediate update, so no required intermediate variables");
     if (!resourcePath || !*resourcePath) return refuse("no resourcePath was given");
     auto fmu = std::make_unique<Fmi3Instance>();
-    fmu->environment = environment;
-    fmu->logMessage = logMessage;
     fmu->earlyReturnAllowed = earlyReturnAllowed == fmi3True;
-    fmi2CallbackFunctions callbacks = {forwardLog, allocate, std::free, nullptr, fmu.get()};
     const std::string uri = fileUri(resourcePath);
-    fmu->core.reset(Instance::create(instanceName, fmi2CoSimulation, instantiationToken, uri.c_str(), &callbacks,
-                                     loggingOn ? fmi2True : fmi2False, "fmi3InstantiateCoSimulation"));
+    fmu->core.reset(Instance::create("fmi3InstantiateCoSimulation", instanceName, instantiationToken, uri.c_str(),
+                                     loggingOn,
+                                     {loggerOf(environment, logMessage), typeAdvice, "fmi3SerializedFMUStateSize"}));
     return fmu->core ? fmu.release() : nullptr;
   } catch (const std::exception& e) {
     return refuse(std::string("failed: ") + e.what());
@@ -210,11 +205,12 @@ fmi3Instance fmi3InstantiateScheduledExecution(fmi3String instanceName, fmi3Stri
 void fmi3FreeInstance(fmi3Instance instance) { delete fmuOf(instance); }
 
 fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean toleranceDefined, fmi3Float64 tolerance,
-                                       fmi3Float64 startTime, fmi3Boolean stopTimeDefined, fmi3Float64 stopTime) {
+                                       fmi3Float64 startTime, fmi3Boolean /*stopTimeDefined*/,
+                                       fmi3Float64 /*stopTime*/) {
+  // no stop time: the FMU runs as long as it is stepped
   return run(instance, "fmi3EnterInitializationMode", allowed::EnterInitializationMode, [&](Instance& i) {
-    const fmi2Status s = i.setupExperiment(toleranceDefined ? fmi2True : fmi2False, tolerance, startTime,
-                                           stopTimeDefined ? fmi2True : fmi2False, stopTime);
-    return s == fmi2OK ? i.enterInitializationMode() : s;
+    const Status s = i.setupExperiment(toleranceDefined, tolerance, startTime);
+    return s == Status::OK ? i.enterInitializationMode() : s;
   });
 }
 
@@ -240,8 +236,8 @@ fmi3Status fmi3Reset(fmi3Instance instance) {
 fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, fmi3Float64 values[],
                           size_t nValues) {
   return run(instance, "fmi3GetFloat64", allowed::Get, [&](Instance& i) {
-    if (!scalars(i, "fmi3GetFloat64", nvr, nValues)) return fmi2Error;
-    if (!allOfType(i, "fmi3GetFloat64", vr, nvr, BaseType::Real, "is not a Float64")) return fmi2Error;
+    if (!scalars(i, nvr, nValues)) return Status::Error;
+    if (!allOfType(i, vr, nvr, BaseType::Real, "is not a Float64")) return Status::Error;
     return i.getReal(vr, nvr, values);
   });
 }
@@ -249,8 +245,8 @@ fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference vr[], 
 fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, const fmi3Float64 values[],
                           size_t nValues) {
   return run(instance, "fmi3SetFloat64", allowed::Set, [&](Instance& i) {
-    if (!scalars(i, "fmi3SetFloat64", nvr, nValues)) return fmi2Error;
-    if (!allOfType(i, "fmi3SetFloat64", vr, nvr, BaseType::Real, "is not a Float64")) return fmi2Error;
+    if (!scalars(i, nvr, nValues)) return Status::Error;
+    if (!allOfType(i, vr, nvr, BaseType::Real, "is not a Float64")) return Status::Error;
     return i.setReal(vr, nvr, values);
   });
 }
@@ -258,8 +254,8 @@ fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference vr[], 
 fmi3Status fmi3GetInt32(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, fmi3Int32 values[],
                         size_t nValues) {
   return run(instance, "fmi3GetInt32", allowed::Get, [&](Instance& i) {
-    if (!scalars(i, "fmi3GetInt32", nvr, nValues)) return fmi2Error;
-    if (!allOfType(i, "fmi3GetInt32", vr, nvr, BaseType::Integer, "is not an Int32")) return fmi2Error;
+    if (!scalars(i, nvr, nValues)) return Status::Error;
+    if (!allOfType(i, vr, nvr, BaseType::Integer, "is not an Int32")) return Status::Error;
     return i.getInteger(vr, nvr, values);
   });
 }
@@ -267,8 +263,8 @@ fmi3Status fmi3GetInt32(fmi3Instance instance, const fmi3ValueReference vr[], si
 fmi3Status fmi3SetInt32(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, const fmi3Int32 values[],
                         size_t nValues) {
   return run(instance, "fmi3SetInt32", allowed::Set, [&](Instance& i) {
-    if (!scalars(i, "fmi3SetInt32", nvr, nValues)) return fmi2Error;
-    if (!allOfType(i, "fmi3SetInt32", vr, nvr, BaseType::Integer, "is not an Int32")) return fmi2Error;
+    if (!scalars(i, nvr, nValues)) return Status::Error;
+    if (!allOfType(i, vr, nvr, BaseType::Integer, "is not an Int32")) return Status::Error;
     return i.setInteger(vr, nvr, values);
   });
 }
@@ -277,14 +273,14 @@ fmi3Status fmi3SetInt32(fmi3Instance instance, const fmi3ValueReference vr[], si
 fmi3Status fmi3GetInt64(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, fmi3Int64 values[],
                         size_t nValues) {
   return run(instance, "fmi3GetInt64", allowed::Get, [&](Instance& i) {
-    if (!scalars(i, "fmi3GetInt64", nvr, nValues)) return fmi2Error;
-    if (!allOfType(i, "fmi3GetInt64", vr, nvr, BaseType::Enumeration,
+    if (!scalars(i, nvr, nValues)) return Status::Error;
+    if (!allOfType(i, vr, nvr, BaseType::Enumeration,
                    "is not an Enumeration (the Int64 accessor "
                    "reads Enumerations only)"))
-      return fmi2Error;
-    std::vector<fmi2Integer> read(nvr);
-    const fmi2Status s = i.getInteger(vr, nvr, read.data());
-    if (s == fmi2OK)
+      return Status::Error;
+    std::vector<int32_t> read(nvr);
+    const Status s = i.getInteger(vr, nvr, read.data());
+    if (s == Status::OK)
       for (size_t k = 0; k < nvr; ++k) values[k] = read[k];
     return s;
   });
@@ -293,17 +289,16 @@ fmi3Status fmi3GetInt64(fmi3Instance instance, const fmi3ValueReference vr[], si
 fmi3Status fmi3SetInt64(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, const fmi3Int64 values[],
                         size_t nValues) {
   return run(instance, "fmi3SetInt64", allowed::Set, [&](Instance& i) {
-    if (!scalars(i, "fmi3SetInt64", nvr, nValues)) return fmi2Error;
-    if (!allOfType(i, "fmi3SetInt64", vr, nvr, BaseType::Enumeration,
+    if (!scalars(i, nvr, nValues)) return Status::Error;
+    if (!allOfType(i, vr, nvr, BaseType::Enumeration,
                    "is not an Enumeration (the Int64 accessor "
                    "writes Enumerations only)"))
-      return fmi2Error;
-    std::vector<fmi2Integer> narrow(nvr);
+      return Status::Error;
+    std::vector<int32_t> narrow(nvr);
     for (size_t k = 0; k < nvr; ++k) {
-      if (values[k] < std::numeric_limits<fmi2Integer>::min() || values[k] > std::numeric_limits<fmi2Integer>::max())
-        return i.error("fmi3SetInt64: " + i.variables()[vr[k]].name + " = " + std::to_string(values[k]) +
-                       " is not one of its items");
-      narrow[k] = static_cast<fmi2Integer>(values[k]);
+      if (values[k] < std::numeric_limits<int32_t>::min() || values[k] > std::numeric_limits<int32_t>::max())
+        return i.error(i.variables()[vr[k]].name + " = " + std::to_string(values[k]) + " is not one of its items");
+      narrow[k] = static_cast<int32_t>(values[k]);
     }
     return i.setInteger(vr, nvr, narrow.data());
   });
@@ -368,11 +363,11 @@ fmi3Status fmi3SerializedFMUStateSize(fmi3Instance instance, fmi3FMUState state,
 }
 fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState state, fmi3Byte bytes[], size_t size) {
   return run(instance, "fmi3SerializeFMUState", allowed::FMUState,
-             [&](Instance& i) { return i.serializeState(state, reinterpret_cast<fmi2Byte*>(bytes), size); });
+             [&](Instance& i) { return i.serializeState(state, reinterpret_cast<char*>(bytes), size); });
 }
 fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte bytes[], size_t size, fmi3FMUState* state) {
   return run(instance, "fmi3DeserializeFMUState", allowed::FMUState,
-             [&](Instance& i) { return i.deserializeState(reinterpret_cast<const fmi2Byte*>(bytes), size, state); });
+             [&](Instance& i) { return i.deserializeState(reinterpret_cast<const char*>(bytes), size, state); });
 }
 
 fmi3Status fmi3GetDirectionalDerivative(fmi3Instance instance, const fmi3ValueReference unknowns[], size_t nUnknowns,
@@ -381,7 +376,7 @@ fmi3Status fmi3GetDirectionalDerivative(fmi3Instance instance, const fmi3ValueRe
   return run(instance, "fmi3GetDirectionalDerivative", allowed::GetDirectionalDerivative, [&](Instance& i) {
     if (nSeed != nKnowns || nSensitivity != nUnknowns)
       return i.error(
-          "fmi3GetDirectionalDerivative: nSeed must equal nKnowns and nSensitivity nUnknowns "
+          "nSeed must equal nKnowns and nSensitivity nUnknowns "
           "(every variable is a scalar), got " +
           std::to_string(nSeed) + "/" + std::to_string(nKnowns) + " and " + std::to_string(nSensitivity) + "/" +
           std::to_string(nUnknowns));
@@ -397,7 +392,7 @@ fmi3Status fmi3GetAdjointDerivative(fmi3Instance instance, const fmi3ValueRefere
 fmi3Status fmi3GetOutputDerivatives(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                     const fmi3Int32 orders[], fmi3Float64 values[], size_t nValues) {
   return run(instance, "fmi3GetOutputDerivatives", allowed::GetOutputDerivatives, [&](Instance& i) {
-    if (!scalars(i, "fmi3GetOutputDerivatives", nvr, nValues)) return fmi2Error;
+    if (!scalars(i, nvr, nValues)) return Status::Error;
     return i.getOutputDerivatives(vr, nvr, orders, values);
   });
 }
@@ -410,18 +405,13 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
   return run(instance, "fmi3DoStep", allowed::DoStep, [&](Instance& i) {
     if (!eventHandlingNeeded || !terminateSimulation || !earlyReturn || !lastSuccessfulTime)
       return i.error(
-          "fmi3DoStep: eventHandlingNeeded, terminateSimulation, earlyReturn and lastSuccessfulTime "
+          "eventHandlingNeeded, terminateSimulation, earlyReturn and lastSuccessfulTime "
           "must not be NULL");
-    const fmi2Status s =
-        i.doStep(currentCommunicationPoint, communicationStepSize, fmuOf(instance)->earlyReturnAllowed);
-    fmi2Real reached = 0.0;
-    fmi2Boolean terminated = fmi2False;
-    i.getRealStatus(fmi2LastSuccessfulTime, &reached);
-    i.getBooleanStatus(fmi2Terminated, &terminated);
+    const Status s = i.doStep(currentCommunicationPoint, communicationStepSize, fmuOf(instance)->earlyReturnAllowed);
     *eventHandlingNeeded = fmi3False;
     *earlyReturn = i.returnedEarly() ? fmi3True : fmi3False;
-    *terminateSimulation = terminated == fmi2True ? fmi3True : fmi3False;
-    *lastSuccessfulTime = reached;
+    *terminateSimulation = i.wantsToTerminate() ? fmi3True : fmi3False;
+    *lastSuccessfulTime = i.lastSuccessfulTime();
     return s;
   });
 }

@@ -1,5 +1,5 @@
-// The FMI 3.0 co-simulation state machine as one table, in the states of the FMI 2
-// one (fmi2_states.h, Instance): Instantiated, Initialization Mode, Step Mode (the
+// The FMI 3.0 co-simulation state machine as one table, in the Instance's states (as
+// the FMI 2 one, fmi2_states.h): Instantiated, Initialization Mode, Step Mode (the
 // Instance's kStepComplete, and kStepFailed after a discarded step), Terminated and
 // the Error state (FMI 3.0, section 4.1, the co-simulation state machine without Event
 // Mode and Configuration Mode, which this FMU does not have). A call in any other state

@@ -33,30 +33,28 @@ const char* stateName(unsigned state) {
   return "?";
 }
 
-// The logger's message is a printf format: a literal '%' must be doubled.
-std::string escapePercent(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    out += c;
-    if (c == '%') out += '%';
+// The log category of a status's messages (kLogCategories).
+const char* categoryOf(Status status) {
+  switch (status) {
+    case Status::OK: return "logEvents";
+    case Status::Warning: return "logStatusWarning";
+    case Status::Discard: return "logStatusDiscard";
+    case Status::Error: return "logStatusError";
+    case Status::Fatal: return "logStatusError";
   }
-  return out;
+  return "logStatusError";
 }
 
 }  // namespace
 
-Instance* Instance::create(fmi2String instanceName, int type, fmi2String guid, fmi2String resourceLocation,
-                           const fmi2CallbackFunctions* functions, fmi2Boolean loggingOn, const char* function) {
-  if (!functions) return nullptr;  // nowhere to report to; the standard requires them
+Instance* Instance::create(const char* function, const char* instanceName, const char* guid,
+                           const char* resourceLocation, bool loggingOn, Adapter adapter) {
   const std::string name = instanceName ? instanceName : "";
   auto refuse = [&](const std::string& why) -> Instance* {
-    if (functions->logger)
-      functions->logger(functions->componentEnvironment, name.c_str(), fmi2Error, "logStatusError",
-                        escapePercent(std::string(function) + ": " + why).c_str());
+    if (adapter.logger) adapter.logger(Status::Error, "logStatusError", std::string(function) + ": " + why);
     return nullptr;
   };
   if (name.empty()) return refuse("instanceName must be a non-empty string");
-  if (type != fmi2CoSimulation) return refuse("this FMU implements Co-Simulation only (fmuType = fmi2CoSimulation)");
   std::string why;
   const auto dir = resourceDirectory(resourceLocation, why);
   if (!dir) return refuse(why);
@@ -74,20 +72,21 @@ Instance* Instance::create(fmi2String instanceName, int type, fmi2String guid, f
   if (!guid || expected != guid)
     return refuse("GUID " + std::string(guid ? guid : "(null)") + " does not match this FMU's scene, whose GUID is " +
                   expected);
-  Instance* instance = new Instance(name, *functions, loggingOn == fmi2True, std::move(scene));
+  Instance* instance = new Instance(name, std::move(adapter), loggingOn, std::move(scene), function);
   instance->guid_ = expected;
   return instance;
 }
 
-Instance::Instance(std::string name, const fmi2CallbackFunctions& functions, bool loggingOn, rigid::Scene scene)
+Instance::Instance(std::string name, Adapter adapter, bool loggingOn, rigid::Scene scene, const char* function)
     : name_(std::move(name)),
-      functions_(functions),
+      adapter_(std::move(adapter)),
       loggingOn_(loggingOn),
+      function_(function),
       scene_(std::move(scene)),
       vars_(modelVariables(scene_)) {
   for (int i = 0; i < kLogCategoryCount; ++i) categories_.insert(kLogCategories[i].name);
   restart();
-  log(fmi2OK, "logEvents",
+  log(Status::OK, "logEvents",
       "instantiated scene " + scene_.model.name + " with " + std::to_string(model_.bodies.size()) + " bodies");
 }
 
@@ -100,98 +99,93 @@ void Instance::restart() {
   substepNote_.clear();
 }
 
-void Instance::log(fmi2Status status, const char* category, const std::string& message) const {
-  if (!functions_.logger) return;
-  const bool always = status == fmi2Warning || status == fmi2Discard || status == fmi2Error || status == fmi2Fatal;
-  if (!always && !(loggingOn_ && categories_.count(category))) return;
-  functions_.logger(functions_.componentEnvironment, name_.c_str(), status, category, escapePercent(message).c_str());
+void Instance::log(Status status, const char* category, const std::string& message) const {
+  if (!adapter_.logger) return;
+  if (status == Status::OK && !(loggingOn_ && categories_.count(category))) return;
+  adapter_.logger(status, category, message);
 }
 
-fmi2Status Instance::error(const std::string& message) const {
-  log(fmi2Error, "logStatusError", message);
-  return fmi2Error;
+std::string Instance::inCall(const std::string& message) const { return std::string(function_) + ": " + message; }
+
+Status Instance::report(Status status, const std::string& message) const {
+  log(status, categoryOf(status), inCall(message));
+  return status;
 }
 
-fmi2Status Instance::error(const char* function, const std::string& message) const {
-  return error(std::string(called(function)) + ": " + message);
-}
-
-bool Instance::allowedIn(unsigned allowed, const char* function) {
+bool Instance::enter(const char* function, unsigned allowed) {
+  function_ = function;
   if (state_ & allowed) {
-    log(fmi2OK, "logCalls", function);
+    log(Status::OK, "logCalls", function);
     return true;
   }
-  error(std::string(function) + ": not allowed in state " + stateName(state_));
+  error(std::string("not allowed in state ") + stateName(state_));
   return false;
 }
 
-fmi2Status Instance::setDebugLogging(fmi2Boolean loggingOn, size_t n, const fmi2String categories[]) {
-  loggingOn_ = loggingOn == fmi2True;
-  if (n == 0) return fmi2OK;  // all categories keep their setting
-  if (!categories) return error("fmi2SetDebugLogging", "categories is NULL with nCategories > 0");
+Status Instance::setDebugLogging(bool loggingOn, size_t n, const char* const categories[]) {
+  loggingOn_ = loggingOn;
+  if (n == 0) return Status::OK;  // all categories keep their setting
+  if (!categories) return error("categories is NULL with nCategories > 0");
   std::set<std::string> chosen;
   for (size_t i = 0; i < n; ++i) {
     const std::string c = categories[i] ? categories[i] : "";
     bool known = false;
     for (int k = 0; k < kLogCategoryCount; ++k) known |= c == kLogCategories[k].name;
-    if (!known) return error("fmi2SetDebugLogging", "unknown log category \"" + c + "\"");
+    if (!known) return error("unknown log category \"" + c + "\"");
     chosen.insert(c);
   }
   categories_ = chosen;
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::setupExperiment(fmi2Boolean toleranceDefined, fmi2Real tolerance, fmi2Real startTime, fmi2Boolean,
-                                     fmi2Real) {
-  if (!std::isfinite(startTime)) return error("fmi2SetupExperiment", "startTime must be finite, got " + num(startTime));
+Status Instance::setupExperiment(bool toleranceDefined, double tolerance, double startTime) {
+  if (!std::isfinite(startTime)) return error("startTime must be finite, got " + num(startTime));
   if (toleranceDefined)
-    log(fmi2OK, "logEvents", "tolerance " + num(tolerance) + " noted; the fixed-step methods use solver.step instead");
+    log(Status::OK, "logEvents",
+        "tolerance " + num(tolerance) + " noted; the fixed-step methods use solver.step instead");
   startTime_ = time_ = lastSuccessfulTime_ = startTime;
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::enterInitializationMode() {
+Status Instance::enterInitializationMode() {
   state_ = kInitializationMode;
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::exitInitializationMode() {
+Status Instance::exitInitializationMode() {
   for (const rigid::BodyConstants& b : model_.bodies)
     if (b.start.orientation.norm() < 1e-12) return error(b.name + ".orientation: must not be the zero quaternion");
   if (const std::string why = frictionConflict(model_); !why.empty()) return error(why);
   data_ = rigid::initialData(model_);
   time_ = lastSuccessfulTime_ = startTime_;
   state_ = kStepComplete;
-  if (const std::string why = rigid::massRatioWarning(model_); !why.empty())
-    log(fmi2Warning, "logStatusWarning", std::string(called("fmi2ExitInitializationMode")) + ": " + why);
-  log(fmi2OK, "logEvents",
+  if (const std::string why = rigid::massRatioWarning(model_); !why.empty()) report(Status::Warning, why);
+  log(Status::OK, "logEvents",
       "initialised at t = " + num(time_) + " with method " + rigid::methodName(model_.method) + ", step " +
           num(model_.maxStep) + " s");
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::terminate() {
+Status Instance::terminate() {
   state_ = kTerminated;
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::reset() {
+Status Instance::reset() {
   restart();
-  log(fmi2OK, "logEvents", "reset to the just-instantiated state");
-  return fmi2OK;
+  log(Status::OK, "logEvents", "reset to the just-instantiated state");
+  return Status::OK;
 }
 
-const Variable* Instance::lookup(const char* function, fmi2ValueReference vr, bool integer) const {
+const Variable* Instance::lookup(uint32_t vr, bool integer) const {
   if (vr >= vars_.size()) {
-    error(std::string(function) + ": unknown value reference " + std::to_string(vr) + " (this FMU has 0.." +
-          std::to_string(vars_.size() - 1) + ")");
+    error("unknown value reference " + std::to_string(vr) + " (this FMU has 0.." + std::to_string(vars_.size() - 1) +
+          ")");
     return nullptr;
   }
   const Variable& v = vars_[vr];
   if ((v.type != BaseType::Real) != integer) {
-    error(std::string(function) + ": value reference " + std::to_string(vr) + " (" + v.name + ") is " +
-          (v.type == BaseType::Real ? "a Real, use fmi2Get/SetReal"
-                                    : "an Integer or Enumeration, use fmi2Get/SetInteger"));
+    error("value reference " + std::to_string(vr) + " (" + v.name + ") is " + adapter_.typeAdvice(v.type));
     return nullptr;
   }
   return &v;
@@ -215,8 +209,8 @@ bool Instance::writable(const Variable& v) const {
   return false;
 }
 
-fmi2Status Instance::write(const Variable& v, double value) {
-  if (!writable(v)) return fmi2Error;
+Status Instance::write(const Variable& v, double value) {
+  if (!writable(v)) return Status::Error;
   const std::string why = writeValue(v, value, model_, data_, setupPhase() ? Phase::Setup : Phase::Running);
   if (!why.empty()) return error(why);
   // A change of tunable parameter between steps moves the auxiliaries' inputs only;
@@ -227,58 +221,58 @@ fmi2Status Instance::write(const Variable& v, double value) {
     rigid::refreshAuxiliaries(model_, data_);
     if (v.causality == Causality::Parameter) rigid::wakeAll(data_.sleep, data_.contactMemory);
   }
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::getReal(const fmi2ValueReference vr[], size_t n, fmi2Real value[]) {
-  if (n && (!vr || !value)) return error("fmi2GetReal", "vr or value is NULL");
+Status Instance::getReal(const uint32_t vr[], size_t n, double value[]) {
+  if (n && (!vr || !value)) return error("vr or value is NULL");
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup(called("fmi2GetReal"), vr[i], false);
-    if (!v) return fmi2Error;
+    const Variable* v = lookup(vr[i], false);
+    if (!v) return Status::Error;
     value[i] = read(*v);
   }
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::getInteger(const fmi2ValueReference vr[], size_t n, fmi2Integer value[]) {
-  if (n && (!vr || !value)) return error("fmi2GetInteger", "vr or value is NULL");
+Status Instance::getInteger(const uint32_t vr[], size_t n, int32_t value[]) {
+  if (n && (!vr || !value)) return error("vr or value is NULL");
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup(called("fmi2GetInteger"), vr[i], true);
-    if (!v) return fmi2Error;
-    value[i] = static_cast<fmi2Integer>(read(*v));
+    const Variable* v = lookup(vr[i], true);
+    if (!v) return Status::Error;
+    value[i] = static_cast<int32_t>(read(*v));
   }
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::setReal(const fmi2ValueReference vr[], size_t n, const fmi2Real value[]) {
-  if (n && (!vr || !value)) return error("fmi2SetReal", "vr or value is NULL");
+Status Instance::setReal(const uint32_t vr[], size_t n, const double value[]) {
+  if (n && (!vr || !value)) return error("vr or value is NULL");
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup(called("fmi2SetReal"), vr[i], false);
-    if (!v) return fmi2Error;
-    if (const fmi2Status s = write(*v, value[i]); s != fmi2OK) return s;
+    const Variable* v = lookup(vr[i], false);
+    if (!v) return Status::Error;
+    if (const Status s = write(*v, value[i]); s != Status::OK) return s;
   }
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::setInteger(const fmi2ValueReference vr[], size_t n, const fmi2Integer value[]) {
-  if (n && (!vr || !value)) return error("fmi2SetInteger", "vr or value is NULL");
+Status Instance::setInteger(const uint32_t vr[], size_t n, const int32_t value[]) {
+  if (n && (!vr || !value)) return error("vr or value is NULL");
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup(called("fmi2SetInteger"), vr[i], true);
-    if (!v) return fmi2Error;
-    if (const fmi2Status s = write(*v, value[i]); s != fmi2OK) return s;
+    const Variable* v = lookup(vr[i], true);
+    if (!v) return Status::Error;
+    if (const Status s = write(*v, value[i]); s != Status::OK) return s;
   }
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::noVariablesOfType(const char* function, const fmi2ValueReference vr[], size_t n) {
-  if (n == 0) return fmi2OK;
-  return error(std::string(function) + ": unknown value reference " +
-               (vr ? std::to_string(vr[0]) : std::string("(NULL)")) + " (this FMU has no variables of this type)");
+Status Instance::noVariablesOfType(const uint32_t vr[], size_t n) {
+  if (n == 0) return Status::OK;
+  return error("unknown value reference " + (vr ? std::to_string(vr[0]) : std::string("(NULL)")) +
+               " (this FMU has no variables of this type)");
 }
 
-fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h, bool returnEarlyAtImpact) {
+Status Instance::doStep(double tc, double h, bool returnEarlyAtImpact) {
   returnedEarly_ = false;
-  if (const fmi2Status s = checkStep(tc, h); s != fmi2OK) return s;
+  if (const Status s = checkStep(tc, h); s != Status::OK) return s;
   rigid::clearContactLoads(data_);  // the contact loads are this step's
   const Interval run = advance(h, true, returnEarlyAtImpact);
   lastStepSize_ = run.impactAt >= 0.0 ? run.impactAt : h;
@@ -286,32 +280,31 @@ fmi2Status Instance::doStep(fmi2Real tc, fmi2Real h, bool returnEarlyAtImpact) {
   if (run.impactAt >= 0.0) {
     returnedEarly_ = true;
     time_ = lastSuccessfulTime_ = tc + run.impactAt;
-    log(fmi2OK, "logEvents", "fmi3DoStep: returned early at the impact at t = " + num(time_) + " s");
-    return fmi2OK;
+    log(Status::OK, "logEvents", inCall("returned early at the impact at t = " + num(time_) + " s"));
+    return Status::OK;
   }
   time_ = lastSuccessfulTime_ = tc + h;
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::checkStep(fmi2Real tc, fmi2Real h) const {
-  if (!std::isfinite(tc)) return error("fmi2DoStep", "currentCommunicationPoint must be finite, got " + num(tc));
-  if (!std::isfinite(h) || h <= 0.0)
-    return error("fmi2DoStep", "communicationStepSize must be > 0 and finite, got " + num(h));
+Status Instance::checkStep(double tc, double h) const {
+  if (!std::isfinite(tc)) return error("currentCommunicationPoint must be finite, got " + num(tc));
+  if (!std::isfinite(h) || h <= 0.0) return error("communicationStepSize must be > 0 and finite, got " + num(h));
   // Masters that accumulate time send points that jitter by a few ulps: accept them.
   const double tolerance = 1e-9 * std::max(1.0, std::abs(time_));
   if (std::abs(tc - time_) > tolerance)
-    return error("fmi2DoStep", "currentCommunicationPoint " + num(tc) + " is not the FMU's time " + num(time_) +
-                                   " (tolerance " + num(tolerance) + ")");
+    return error("currentCommunicationPoint " + num(tc) + " is not the FMU's time " + num(time_) + " (tolerance " +
+                 num(tolerance) + ")");
   // friction set since the last step: mu_k <= mu_s, checked now that both are set
-  if (const std::string why = frictionConflict(model_); !why.empty()) return error("fmi2DoStep", why);
+  if (const std::string why = frictionConflict(model_); !why.empty()) return error(why);
   const double ratio = h / model_.maxStep;
   if (ratio > 1e12)
-    return error("fmi2DoStep", "communicationStepSize " + num(h) +
-                                   " s needs more than 1e12 steps of solver.step = " + num(model_.maxStep) + " s");
-  return fmi2OK;
+    return error("communicationStepSize " + num(h) +
+                 " s needs more than 1e12 steps of solver.step = " + num(model_.maxStep) + " s");
+  return Status::OK;
 }
 
-fmi2Status Instance::discardStep(fmi2Real tc, const Interval& run) {
+Status Instance::discardStep(double tc, const Interval& run) {
   const rigid::StepResult& r = run.result;
   time_ = lastSuccessfulTime_ = tc + run.from;
   state_ = kStepFailed;
@@ -319,11 +312,9 @@ fmi2Status Instance::discardStep(fmi2Real tc, const Interval& run) {
   const std::string hint = r.body >= 0 && r.cause == rigid::StepCause::None
                                ? " (inputs or parameters out of range, e.g. " + model_.bodies[r.body].name + ".force)"
                                : "";
-  log(fmi2Discard, "logStatusDiscard",
-      std::string(called("fmi2DoStep")) + ": " + stepFailure(r, run.to - run.from) +
-          " after the internal step from t = " + num(tc + run.from) + " to " + num(tc + run.to) + " s" + hint +
-          "; the FMU stays at t = " + num(time_) + " s and must be reset or terminated");
-  return fmi2Discard;
+  return report(Status::Discard, stepFailure(r, run.to - run.from) + " after the internal step from t = " +
+                                     num(tc + run.from) + " to " + num(tc + run.to) + " s" + hint +
+                                     "; the FMU stays at t = " + num(time_) + " s and must be reset or terminated");
 }
 
 std::string Instance::stepFailure(const rigid::StepResult& r, double internalStep) const {
@@ -354,7 +345,7 @@ std::string Instance::stepFailure(const rigid::StepResult& r, double internalSte
          "rosenbrock would work";
 }
 
-Instance::Interval Instance::advance(double h, bool report, bool stopAtImpact) {
+Instance::Interval Instance::advance(double h, bool reportSubsteps, bool stopAtImpact) {
   // Internal steps of solver.step, the last one shortened; a remainder within
   // rounding of zero is not a step of its own. Times are tc + k*step, never summed.
   const long n = std::max(1L, static_cast<long>(std::ceil(h / model_.maxStep - 1e-9)));
@@ -383,32 +374,27 @@ Instance::Interval Instance::advance(double h, bool report, bool stopAtImpact) {
     }
     const rigid::StepResult r = rigid::step(model_, data_, to - from, stopAtImpact);
     if (!r.ok) return {r, from, to};
-    if (report) noteSubsteps(r, to - from);
+    if (reportSubsteps) noteSubsteps(r, to - from);
     if (r.impactAt >= 0.0) return {r, from, to, from + r.impactAt};
   }
   return {};
 }
 
-fmi2Status Instance::getDirectionalDerivative(const fmi2ValueReference unknown[], size_t nUnknown,
-                                              const fmi2ValueReference known[], size_t nKnown, const fmi2Real dvKnown[],
-                                              fmi2Real dvUnknown[]) {
-  const char* fn = called("fmi2GetDirectionalDerivative");
-  if ((nUnknown && (!unknown || !dvUnknown)) || (nKnown && (!known || !dvKnown)))
-    return error(std::string(fn) + ": an array is NULL");
+Status Instance::getDirectionalDerivative(const uint32_t unknown[], size_t nUnknown, const uint32_t known[],
+                                          size_t nKnown, const double dvKnown[], double dvUnknown[]) {
+  if ((nUnknown && (!unknown || !dvUnknown)) || (nKnown && (!known || !dvKnown))) return error("an array is NULL");
   std::vector<const Variable*> ins, outs;
   for (size_t i = 0; i < nKnown; ++i) {
-    const Variable* v = lookup(fn, known[i], false);
-    if (!v) return fmi2Error;
-    if (v->causality != Causality::Input)
-      return error(std::string(fn) + ": " + v->name + " is not an input (knowns must be inputs)");
-    if (!std::isfinite(dvKnown[i])) return error(std::string(fn) + ": the seed of " + v->name + " must be finite");
+    const Variable* v = lookup(known[i], false);
+    if (!v) return Status::Error;
+    if (v->causality != Causality::Input) return error(v->name + " is not an input (knowns must be inputs)");
+    if (!std::isfinite(dvKnown[i])) return error("the seed of " + v->name + " must be finite");
     ins.push_back(v);
   }
   for (size_t i = 0; i < nUnknown; ++i) {
-    const Variable* v = lookup(fn, unknown[i], false);
-    if (!v) return fmi2Error;
-    if (v->causality != Causality::Output)
-      return error(std::string(fn) + ": " + v->name + " is not an output (unknowns must be outputs)");
+    const Variable* v = lookup(unknown[i], false);
+    if (!v) return Status::Error;
+    if (v->causality != Causality::Output) return error(v->name + " is not an output (unknowns must be outputs)");
     outs.push_back(v);
   }
   // d(outputs after the next communication step)/d(inputs) . seed, by central
@@ -420,7 +406,7 @@ fmi2Status Instance::getDirectionalDerivative(const fmi2ValueReference unknown[]
   for (size_t i = 0; i < nKnown; ++i) seedNorm = std::max(seedNorm, std::abs(dvKnown[i]));
   if (seedNorm == 0.0) {
     std::fill(dvUnknown, dvUnknown + nUnknown, 0.0);
-    return fmi2OK;
+    return Status::OK;
   }
   const rigid::WorldData saved = data_;
   double scale = 1.0;
@@ -434,30 +420,29 @@ fmi2Status Instance::getDirectionalDerivative(const fmi2ValueReference unknown[]
     const Interval run = advance(h, false);
     if (!run.result.ok) {
       data_ = saved;
-      log(fmi2Discard, "logStatusDiscard", std::string(fn) + ": the perturbed step failed; no derivative");
-      return fmi2Discard;
+      return report(Status::Discard, "the perturbed step failed; no derivative");
     }
     std::vector<double>& out = sign > 0 ? plus : minus;
     for (size_t i = 0; i < nUnknown; ++i) out[i] = read(*outs[i]);
   }
   data_ = saved;
   for (size_t i = 0; i < nUnknown; ++i) dvUnknown[i] = (plus[i] - minus[i]) / (2.0 * eps);
-  return fmi2OK;
+  return Status::OK;
 }
 
-Snapshot* Instance::ownState(fmi2FMUstate state, const char* function) const {
+Snapshot* Instance::ownState(void* state) const {
   Snapshot* s = static_cast<Snapshot*>(state);
   if (!s || !states_.count(s)) {
-    error(std::string(function) + ": not an FMU state of this instance (NULL, freed, or another's)");
+    error("not an FMU state of this instance (NULL, freed, or another's)");
     return nullptr;
   }
   return s;
 }
 
-fmi2Status Instance::getState(fmi2FMUstate* state) {
-  if (!state) return error("fmi2GetFMUstate", "FMUstate is NULL");
+Status Instance::getState(void** state) {
+  if (!state) return error("FMUstate is NULL");
   Snapshot* s = static_cast<Snapshot*>(*state);
-  if (s && !states_.count(s)) return error("fmi2GetFMUstate", "*FMUstate is not a state of this instance");
+  if (s && !states_.count(s)) return error("*FMUstate is not a state of this instance");
   if (!s) {
     owned_.push_back(std::make_unique<Snapshot>());
     s = owned_.back().get();
@@ -465,12 +450,12 @@ fmi2Status Instance::getState(fmi2FMUstate* state) {
   }
   *s = Snapshot{model_, data_, state_, startTime_, time_, lastSuccessfulTime_, wantsToTerminate_, lastStepSize_};
   *state = s;
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::setState(fmi2FMUstate state) {
-  const Snapshot* s = ownState(state, called("fmi2SetFMUstate"));
-  if (!s) return fmi2Error;
+Status Instance::setState(void* state) {
+  const Snapshot* s = ownState(state);
+  if (!s) return Status::Error;
   model_ = s->model;
   data_ = s->data;
   state_ = s->machineState;
@@ -480,14 +465,14 @@ fmi2Status Instance::setState(fmi2FMUstate state) {
   wantsToTerminate_ = s->wantsToTerminate;
   lastStepSize_ = s->lastStepSize;
   substepNote_.clear();
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::freeState(fmi2FMUstate* state) {
-  if (!state) return error("fmi2FreeFMUstate", "FMUstate is NULL");
-  if (!*state) return fmi2OK;  // nothing to free
-  Snapshot* s = ownState(*state, called("fmi2FreeFMUstate"));
-  if (!s) return fmi2Error;
+Status Instance::freeState(void** state) {
+  if (!state) return error("FMUstate is NULL");
+  if (!*state) return Status::OK;  // nothing to free
+  Snapshot* s = ownState(*state);
+  if (!s) return Status::Error;
   states_.erase(s);
   for (auto it = owned_.begin(); it != owned_.end(); ++it)
     if (it->get() == s) {
@@ -495,42 +480,39 @@ fmi2Status Instance::freeState(fmi2FMUstate* state) {
       break;
     }
   *state = nullptr;
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::serializedStateSize(fmi2FMUstate state, size_t* size) {
-  const Snapshot* s = ownState(state, called("fmi2SerializedFMUstateSize"));
-  if (!s) return fmi2Error;
-  if (!size) return error("fmi2SerializedFMUstateSize", "size is NULL");
+Status Instance::serializedStateSize(void* state, size_t* size) {
+  const Snapshot* s = ownState(state);
+  if (!s) return Status::Error;
+  if (!size) return error("size is NULL");
   *size = serialize(*s, guid_).size();
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::serializeState(fmi2FMUstate state, fmi2Byte bytes[], size_t size) {
-  const Snapshot* s = ownState(state, called("fmi2SerializeFMUstate"));
-  if (!s) return fmi2Error;
+Status Instance::serializeState(void* state, char bytes[], size_t size) {
+  const Snapshot* s = ownState(state);
+  if (!s) return Status::Error;
   const std::vector<char> b = serialize(*s, guid_);
   if (!bytes || size < b.size())
-    return error("fmi2SerializeFMUstate",
-                 "the buffer holds " + std::to_string(size) + " bytes, the state needs " + std::to_string(b.size()) +
-                     (call_ ? " (fmi3SerializedFMUStateSize)" : " (fmi2SerializedFMUstateSize)"));
+    return error("the buffer holds " + std::to_string(size) + " bytes, the state needs " + std::to_string(b.size()) +
+                 " (" + adapter_.stateSizeFunction + ")");
   std::copy(b.begin(), b.end(), bytes);
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::deserializeState(const fmi2Byte bytes[], size_t size, fmi2FMUstate* state) {
-  if (!state) return error("fmi2DeSerializeFMUstate", "FMUstate is NULL");
+Status Instance::deserializeState(const char bytes[], size_t size, void** state) {
+  if (!state) return error("FMUstate is NULL");
   // A fresh instance of the same scene is the frame the bytes are read into.
   Snapshot s{scene_.model, rigid::initialData(scene_.model), kInstantiated, 0.0, 0.0, 0.0, false, 0.0};
   const std::string why = deserialize(bytes, size, guid_, s);
-  if (!why.empty()) return error("fmi2DeSerializeFMUstate", why);
+  if (!why.empty()) return error(why);
   const unsigned known = kInstantiated | kInitializationMode | kStepComplete | kStepFailed | kTerminated | kError;
   if (__builtin_popcount(s.machineState) != 1 || !(s.machineState & known))
-    return error("fmi2DeSerializeFMUstate",
-                 "the state holds an unknown machine state " + std::to_string(s.machineState));
+    return error("the state holds an unknown machine state " + std::to_string(s.machineState));
   Snapshot* target = static_cast<Snapshot*>(*state);
-  if (target && !states_.count(target))
-    return error("fmi2DeSerializeFMUstate", "*FMUstate is not a state of this instance");
+  if (target && !states_.count(target)) return error("*FMUstate is not a state of this instance");
   if (!target) {
     owned_.push_back(std::make_unique<Snapshot>());
     target = owned_.back().get();
@@ -538,35 +520,30 @@ fmi2Status Instance::deserializeState(const fmi2Byte bytes[], size_t size, fmi2F
   }
   *target = std::move(s);
   *state = target;
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::setInputDerivatives(const fmi2ValueReference vr[], size_t n, const fmi2Integer order[],
-                                         const fmi2Real value[]) {
-  if (n && (!vr || !order || !value)) return error("fmi2SetRealInputDerivatives", "an array is NULL");
+Status Instance::setInputDerivatives(const uint32_t vr[], size_t n, const int32_t order[], const double value[]) {
+  if (n && (!vr || !order || !value)) return error("an array is NULL");
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup(called("fmi2SetRealInputDerivatives"), vr[i], false);
-    if (!v) return fmi2Error;
-    if (v->causality != Causality::Input) return error("fmi2SetRealInputDerivatives", v->name + " is not an input");
+    const Variable* v = lookup(vr[i], false);
+    if (!v) return Status::Error;
+    if (v->causality != Causality::Input) return error(v->name + " is not an input");
     if (order[i] != 1)
-      return error("fmi2SetRealInputDerivatives", v->name +
-                                                      ": only first-order derivatives "
-                                                      "(order 1) are interpolated, got order " +
-                                                      std::to_string(order[i]));
-    if (!std::isfinite(value[i]))
-      return error("fmi2SetRealInputDerivatives", v->name + ": must be finite, got " + num(value[i]));
+      return error(v->name + ": only first-order derivatives (order 1) are interpolated, got order " +
+                   std::to_string(order[i]));
+    if (!std::isfinite(value[i])) return error(v->name + ": must be finite, got " + num(value[i]));
     rigid::BodyInput& rate = data_.inputRate[v->body];
     rigid::Vec3& of = v->quantity == Quantity::Force    ? rate.force
                       : v->quantity == Quantity::Torque ? rate.torque
                                                         : rate.loads[static_cast<size_t>(v->load)];
     of[v->component] = value[i];
   }
-  return fmi2OK;
+  return Status::OK;
 }
 
-fmi2Status Instance::getOutputDerivatives(const fmi2ValueReference vr[], size_t n, const fmi2Integer order[],
-                                          fmi2Real value[]) {
-  if (n && (!vr || !order || !value)) return error("fmi2GetRealOutputDerivatives", "an array is NULL");
+Status Instance::getOutputDerivatives(const uint32_t vr[], size_t n, const int32_t order[], double value[]) {
+  if (n && (!vr || !order || !value)) return error("an array is NULL");
   // dY/dt at the current state and inputs: the same force stage as the integrators.
   std::vector<rigid::BodyAux> aux(data_.Y.size());
   std::vector<rigid::BodyDerivative> dY(data_.Y.size());
@@ -574,12 +551,10 @@ fmi2Status Instance::getOutputDerivatives(const fmi2ValueReference vr[], size_t 
   std::iota(every.begin(), every.end(), 0);
   rigid::evaluateDerivative(model_, every, data_.input, data_.Y, aux, dY);
   for (size_t i = 0; i < n; ++i) {
-    const Variable* v = lookup(called("fmi2GetRealOutputDerivatives"), vr[i], false);
-    if (!v) return fmi2Error;
-    if (v->causality != Causality::Output) return error("fmi2GetRealOutputDerivatives", v->name + " is not an output");
-    if (order[i] != 1)
-      return error("fmi2GetRealOutputDerivatives",
-                   v->name + ": MaxOutputDerivativeOrder is 1, got order " + std::to_string(order[i]));
+    const Variable* v = lookup(vr[i], false);
+    if (!v) return Status::Error;
+    if (v->causality != Causality::Output) return error(v->name + " is not an output");
+    if (order[i] != 1) return error(v->name + ": MaxOutputDerivativeOrder is 1, got order " + std::to_string(order[i]));
     const int b = v->body, c = v->component;
     const rigid::BodyAux& a = aux[b];
     switch (v->quantity) {
@@ -596,7 +571,7 @@ fmi2Status Instance::getOutputDerivatives(const fmi2ValueReference vr[], size_t 
       default: value[i] = 0.0;  // solver.errorEstimate: piecewise constant
     }
   }
-  return fmi2OK;
+  return Status::OK;
 }
 
 void Instance::noteSubsteps(const rigid::StepResult& r, double h) {
@@ -609,31 +584,11 @@ void Instance::noteSubsteps(const rigid::StepResult& r, double h) {
                               : std::string("method ") + rigid::methodName(model_.method) +
                                     " is outside its stability region (" + rigid::causeName(r.cause) + ")";
   if (r.substeps > 1)
-    log(fmi2Warning, "logStatusWarning",
-        std::string(called("fmi2DoStep")) + ": " + why + " at the internal step of " + num(h) + " s; sub-stepping it " +
-            std::to_string(r.substeps) + " times (steps of at most " + num(r.stableStep) + " s; see solver.steps)");
+    report(Status::Warning, why + " at the internal step of " + num(h) + " s; sub-stepping it " +
+                                std::to_string(r.substeps) + " times (steps of at most " + num(r.stableStep) +
+                                " s; see solver.steps)");
   else
-    log(fmi2OK, "logEvents", std::string(called("fmi2DoStep")) + ": no sub-stepping needed any more");
-}
-
-fmi2Status Instance::getRealStatus(int kind, fmi2Real* value) {
-  if (!value) return error("fmi2GetRealStatus", "value is NULL");
-  if (kind != fmi2LastSuccessfulTime) {
-    log(fmi2Discard, "logStatusDiscard", "fmi2GetRealStatus: only fmi2LastSuccessfulTime is provided");
-    return fmi2Discard;
-  }
-  *value = lastSuccessfulTime_;
-  return fmi2OK;
-}
-
-fmi2Status Instance::getBooleanStatus(int kind, fmi2Boolean* value) {
-  if (!value) return error("fmi2GetBooleanStatus", "value is NULL");
-  if (kind != fmi2Terminated) {
-    log(fmi2Discard, "logStatusDiscard", "fmi2GetBooleanStatus: only fmi2Terminated is provided");
-    return fmi2Discard;
-  }
-  *value = wantsToTerminate_ ? fmi2True : fmi2False;
-  return fmi2OK;
+    log(Status::OK, "logEvents", inCall("no sub-stepping needed any more"));
 }
 
 }  // namespace rigidfmu

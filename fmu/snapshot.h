@@ -1,5 +1,5 @@
-// FMU states (fmi2GetFMUstate and friends): everything that shapes an instance's
-// future, copied, and its versioned, pointer-free serialisation.
+// FMU states: everything that shapes an instance's future, copied, and its versioned,
+// pointer-free serialisation (one format for the FMI 2 and FMI 3 FMUs).
 #pragma once
 
 #include <cstdint>

@@ -2,7 +2,9 @@
 fmpy's FMI 3 support: valid, the same variables and the same run as the FMI 2 FMU of
 the scene, bitwise; states that continue bitwise, in this process and in another;
 reset; bad calls answered with fmi3Error and a message naming the variable or the
-state, the instance still usable."""
+state, the instance still usable; in both versions, every message of a bad call names
+the function the importer called."""
+import ctypes
 import json
 import math
 import pathlib
@@ -13,10 +15,10 @@ import numpy as np
 import pytest
 from fmpy import extract, read_model_description, simulate_fmu
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi3 import FMU3Slave, fmi3Error
+from fmpy.fmi3 import FMU3Slave, fmi3Byte, fmi3Error
 from fmpy.validation import validate_fmu
 
-from rigidfmu.driver import Fmu, load_library
+from rigidfmu.driver import Fmu, Slave, load_library
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 EXAMPLES = sorted(p.name for p in (ROOT / "scripts" / "scenes").glob("*.json"))
@@ -218,6 +220,92 @@ def test_bad_calls_are_refused_with_a_message_and_the_instance_goes_on(fmu_of, t
     assert (event, terminate, early) == (False, False, False) and reached == pytest.approx(0.01, abs=1e-15)
     assert all(math.isfinite(x) for x in fmu.outputs())
     fmu.close()
+
+
+def bad_calls_fmi2(s, vr):
+    """Bad calls on an FMI 2 instance: before and after initialisation, each as (the
+    function the importer calls, the call, what its message says)."""
+    out, method, buffer = vr["ball.position[1]"], vr["solver.method"], ctypes.create_string_buffer(8)
+    before = [("fmi2DoStep", lambda: s.doStep(0.0, 0.01), "not allowed in state Instantiated"),
+              ("fmi2ExitInitializationMode", s.exitInitializationMode, "not allowed in state Instantiated")]
+    after = [
+        ("fmi2EnterInitializationMode", s.enterInitializationMode, "not allowed in state StepComplete"),
+        ("fmi2SetReal", lambda: s.setReal([vr["slider.force[1]"]], [math.nan]), "slider.force[1]: must be finite"),
+        ("fmi2GetReal", lambda: s.getReal([4000000000]), "unknown value reference 4000000000"),
+        ("fmi2SetReal", lambda: s.setReal([4000000000], [1.0]), "unknown value reference 4000000000"),
+        ("fmi2DoStep", lambda: s.doStep(0.0, -0.01), "communicationStepSize must be > 0"),
+        ("fmi2GetInteger", lambda: s.getInteger([vr["ball.mass"]]), "(ball.mass) is a Real, use fmi2Get/SetReal"),
+        ("fmi2SetReal", lambda: s.setReal([method], [1.0]),
+         "(solver.method) is an Integer or Enumeration, use fmi2Get/SetInteger"),
+        ("fmi2SetReal", lambda: s.setReal([vr["ball.mass"]], [2.0]), "ball.mass: only inputs and tunable"),
+        ("fmi2GetDirectionalDerivative", lambda: s.getDirectionalDerivative([out], [method], [1.0]),
+         "(solver.method) is an Integer or Enumeration, use fmi2Get/SetInteger"),
+        ("fmi2SerializeFMUstate", lambda: s.fmi2SerializeFMUstate(s.component, s.getFMUstate(), buffer, 8),
+         "(fmi2SerializedFMUstateSize)")]
+    return before, after
+
+
+def bad_calls_fmi3(s, vr):
+    """The same bad calls on an FMI 3 instance, through the FMI 3 functions."""
+    out, method, buffer = vr["ball.position[1]"], vr["solver.method"], ctypes.create_string_buffer(8)
+    before = [("fmi3DoStep", lambda: s.doStep(0.0, 0.01), "not allowed in state Instantiated"),
+              ("fmi3ExitInitializationMode", s.exitInitializationMode, "not allowed in state Instantiated")]
+    after = [
+        ("fmi3EnterInitializationMode", s.enterInitializationMode, "not allowed in state StepComplete"),
+        ("fmi3SetFloat64", lambda: s.setFloat64([vr["slider.force[1]"]], [math.nan]),
+         "slider.force[1]: must be finite"),
+        ("fmi3GetFloat64", lambda: s.getFloat64([4000000000]), "unknown value reference 4000000000"),
+        ("fmi3SetFloat64", lambda: s.setFloat64([4000000000], [1.0]), "unknown value reference 4000000000"),
+        ("fmi3DoStep", lambda: s.doStep(0.0, -0.01), "communicationStepSize must be > 0"),
+        ("fmi3GetInt32", lambda: s.getInt32([vr["ball.mass"]]), "it is a Float64, use fmi3Get/SetFloat64"),
+        ("fmi3SetFloat64", lambda: s.setFloat64([method], [1.0]), "it is an Enumeration, use fmi3Get/SetInt64"),
+        ("fmi3SetFloat64", lambda: s.setFloat64([vr["ball.mass"]], [2.0]), "ball.mass: only inputs and tunable"),
+        ("fmi3GetDirectionalDerivative", lambda: s.getDirectionalDerivative([out], [method], [1.0]),
+         "(solver.method) is an Enumeration, use fmi3Get/SetInt64"),
+        ("fmi3SerializeFMUState", lambda: s.fmi3SerializeFMUState(
+            s.component, s.getFMUState(), ctypes.cast(buffer, ctypes.POINTER(fmi3Byte)), 8),
+         "(fmi3SerializedFMUStateSize)")]
+    return before, after
+
+
+def refusals(log, calls):
+    """Makes each bad call; returns (function, status, the messages it logged, says)."""
+    out = []
+    for function, call, says in calls:
+        first = len(log.messages)
+        out.append((function, status_of(call), [m for _, _, m in log.messages[first:]], says))
+    return out
+
+
+def test_every_message_of_a_bad_call_names_the_function_called_in_either_version(fmu_of, tmp_path):
+    """The FMI 2 and FMI 3 FMUs of one scene, one version-neutral instance behind both:
+    the same bad calls (wrong state, NaN into an input, unknown references on get and
+    set, a negative step, a variable of the wrong type, a fixed parameter mid-run, a
+    short state buffer) are refused, and every message names the very function the
+    importer called, never one of the other version."""
+    scene = example("default.json")
+    two = Slave(fmu_of(scene), folder=str(tmp_path))
+    three = Fmi3(fmu_of(scene, fmi=3), tmp_path / "fmi3")
+    found = []
+    try:
+        for fmu, s, calls, start in ((two, two.slave, bad_calls_fmi2, two.initialize),
+                                     (three, three.slave, bad_calls_fmi3, three.start)):
+            vr = {v.name: v.valueReference for v in fmu.md.modelVariables}
+            before, after = calls(s, vr)
+            found += refusals(fmu.log, before)
+            start()
+            found += refusals(fmu.log, after)
+        for function, status, messages, says in found:
+            assert status == "Error", (function, says, status)
+            assert messages, f"{function} ({says}) logged nothing"
+            assert all(m.startswith(function + ": ") for m in messages), (function, messages)
+            assert any(says in m for m in messages), (function, says, messages)
+        assert {f[:4] for f, *_ in found} == {"fmi2", "fmi3"} and len(found) == 24
+        assert "fmi2" not in three.log.text(), three.log.text()
+        assert "fmi3" not in two.log.text(), two.log.text()
+    finally:
+        two.close()
+        three.close()
 
 
 def test_a_wrong_instantiation_token_or_model_exchange_is_refused(fmu_of, tmp_path):

@@ -115,6 +115,10 @@ bool scalars(Instance& i, size_t nvr, size_t nValues) {
 // Whether every reference is a variable of `type` (FMI 3 accessors are typed: Int32
 // for Integer variables, Int64 for the Enumeration); refuses the first that is not.
 bool allOfType(Instance& i, const fmi3ValueReference vr[], size_t n, BaseType type, const char* use) {
+  if (n > 0 && !vr) {
+    i.error("valueReferences is NULL but nValueReferences = " + std::to_string(n));
+    return false;
+  }
   const auto& vars = i.variables();
   for (size_t k = 0; k < n; ++k) {
     if (vr[k] >= vars.size()) {

@@ -212,6 +212,11 @@ def test_bad_calls_are_refused_with_a_message_and_the_instance_goes_on(fmu_of, t
     assert status_of(lambda: s.doStep(0.5, 0.01)) == "Error"
     assert "fmi3DoStep: currentCommunicationPoint 0.5 is not the FMU's time 0" in fmu.log.text()
     assert status_of(lambda: s.setFMUState(None)) == "Error"
+    # NULL value references with a count: refused, not read through
+    values = (ctypes.c_double * 1)()
+    assert status_of(lambda: s.fmi3GetFloat64(s.component, None, 1, values, 1)) == "Error"
+    assert "fmi3GetFloat64: valueReferences is NULL but nValueReferences = 1" in fmu.log.text()
+    assert status_of(lambda: s.fmi3SetFloat64(s.component, None, 1, values, 1)) == "Error"
     # every message names the function the importer called, none the FMI 2 function
     # that answers it inside the FMU
     assert "fmi2" not in fmu.log.text(), fmu.log.text()

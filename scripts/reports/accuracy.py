@@ -39,6 +39,7 @@ import time
 import numpy as np
 
 from reports.fmu_build import ensure_core, package
+from reports.provenance import source_state
 from rigidfmu import driver
 from rigidfmu.errors import ReportError
 from rigidfmu.native import SOURCE_ROOT
@@ -610,7 +611,7 @@ def write_markdown(path, results, model_methods, meta):
     L.append("# Accuracy of the integration methods")
     L.append("")
     L.append(f"Written by `scripts/reports/accuracy.py{meta['args']}` on {meta['date']} "
-             f"({meta['cpu']}). Do not edit by hand; rerun `./scripts/report_accuracy.sh`.")
+             f"({meta['cpu']}, {meta['source']}). Do not edit by hand; rerun `./scripts/report_accuracy.sh`.")
     L.append("")
     L.append("Methods found in the FMU's `SolverMethod` enumeration: " +
              ", ".join(f"`{n}` = {v}" for n, v, _ in model_methods) + ".")
@@ -786,7 +787,7 @@ def report(args, builder, folder):
                   f"{c['verdict']}", flush=True)
     plot_grid(results, out / "accuracy" / "work_precision.png")
     meta = {"args": (" --quick" if args.quick else ""), "runs": runs,
-            "date": time.strftime("%Y-%m-%d"), "cpu": cpu_name()}
+            "date": time.strftime("%Y-%m-%d"), "cpu": cpu_name(), "source": source_state()}
     write_markdown(out / "accuracy.md", results, methods_seen or [], meta)
     fails = [(p.key, c["label"]) for p, curves in results for c in curves
              if c["verdict"].startswith("FAIL")]

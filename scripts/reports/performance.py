@@ -41,6 +41,7 @@ import numpy as np
 
 from reports import scenes as bench_scenes
 from reports.accuracy import cpu_name
+from reports.provenance import source_state
 from rigidfmu import driver
 from rigidfmu.errors import ReportError
 from rigidfmu.native import SOURCE_ROOT
@@ -643,20 +644,6 @@ def fmt_s(seconds):
         if seconds >= scale:
             return f"{seconds / scale:.3g} {unit}"
     return f"{seconds / 1e-9:.3g} ns"
-
-
-def source_state():
-    """The commit measured, and whether the working tree differed from it: the figures
-    move with the code, so the report says which code it timed."""
-    try:
-        head = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], check=True,
-                              capture_output=True, text=True).stdout.strip()
-        dirty = subprocess.run(["git", "-C", str(ROOT), "status", "--porcelain", "--", "src", "fmu",
-                                "bench", "modelDescription", "CMakeLists.txt"],
-                               check=True, capture_output=True, text=True).stdout.strip()
-        return f"commit {head}" + (" with local changes to the sources" if dirty else "")
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown source state (no git)"
 
 
 def write_markdown(path, r):

@@ -49,6 +49,7 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 
 from reports.fmu_build import ensure_core, package
+from reports.provenance import source_state
 from rigidfmu import driver
 from rigidfmu.errors import ReportError
 from rigidfmu.native import SOURCE_ROOT
@@ -1069,7 +1070,7 @@ def write_table(path, all_cases, methods, rows, quick, peers, elapsed):
     lines.append("# Stability stress suite")
     lines.append("")
     lines.append(f"Written by `scripts/reports/stability.py{' --quick' if quick else ''}` "
-                 "(run it through `./scripts/stress.sh`); "
+                 f"(run it through `./scripts/stress.sh`) at {source_state()}; "
                  f"{len(all_cases)} cases × {len(names)} methods ({', '.join(names)}, read from the modelDescription's "
                  f"`SolverMethod`), {elapsed:.0f} s in all. "
                  + ("Quick mode: shorter runs (1e5 instead of 1e7 steps, 20 s instead of 100 s of tumbling, "

@@ -51,6 +51,7 @@ def test_quick_report_writes_figures_and_table(quick):
     assert md.exists(), proc.stdout + proc.stderr
     text = md.read_text()
     assert len(text) > 2000
+    assert re.search(r"(commit [0-9a-f]{7,}|unknown source state)", text.split("\n", 3)[2])  # the code it measured
     for title in ("torque-free body near the intermediate axis", "torque-free body near the major axis",
                   "projectile with linear drag"):
         assert f"## {title}" in text

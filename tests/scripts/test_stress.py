@@ -36,6 +36,7 @@ def test_quick_stress_suite_has_every_case_and_method_and_nothing_fails(tmp_path
     # no placeholder left unfilled in the prose (a plain string where an f-string was meant)
     placeholders = re.findall(r"\{[A-Za-z_]\w*\}", text)
     assert not placeholders, placeholders
+    assert re.search(r"at (commit [0-9a-f]{7,}|unknown source state)", text)  # the code it measured
     rows = re.findall(r"^\| `([^`]+)` \| (\S+) \| ([^|]+?) \|", text.split("## Every run", 1)[1], re.M)
     seen = {(c, m): outcome for c, m, outcome in rows}
     keys = [c.key for c in stress.cases(True, [(m, i + 1, "") for i, m in enumerate(methods)])]

@@ -48,6 +48,7 @@ from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
+from reports import template
 from reports.fmu_build import ensure_core, package
 from reports.provenance import source_state
 from rigidfmu import driver
@@ -1063,61 +1064,17 @@ def cell(o, res):
     return o
 
 
-def write_table(path, all_cases, methods, rows, quick, peers, elapsed):
-    by = {(r["case"], r["method"]): r for r in rows}
-    names = [n for n, _, _ in methods]
-    lines = []
-    lines.append("# Stability stress suite")
-    lines.append("")
-    lines.append(f"Written by `scripts/reports/stability.py{' --quick' if quick else ''}` "
-                 f"(run it through `./scripts/stress.sh`) at {source_state()}; "
-                 f"{len(all_cases)} cases × {len(names)} methods ({', '.join(names)}, read from the modelDescription's "
-                 f"`SolverMethod`), {elapsed:.0f} s in all. "
-                 + ("Quick mode: shorter runs (1e5 instead of 1e7 steps, 20 s instead of 100 s of tumbling, "
-                    "fewer communication steps)."
-                    if quick else "Full mode."))
-    lines.append("")
-    lines.append("Outcomes: **holds** — every criterion met, every call fmi2OK; **sub-stepped** — "
-                 "every criterion met and the FMU "
-                 "took more internal steps than T / solver.step (`solver.steps`, ×ratio) or said so in its log; "
-                 "**refused** — "
-                 "fmi2Discard / fmi2Error with a message (quoted below) before any criterion was broken; "
-                 "**FAILS** — a non-finite "
-                 "output with fmi2OK, a criterion broken while fmi2OK (an energy blow-up reported as fmi2OK is one), "
-                 "or a refusal "
-                 "without a message. Every run checks |q| − 1 ≤ 1e-12 and that every Real output is finite "
-                 "at every communication point.")
-    lines.append("")
-    lines.append("## Summary")
-    lines.append("")
-    lines.append("| case | " + " | ".join(names) + " |")
-    lines.append("|---|" + "---|" * len(names))
+def summary_table(all_cases, names, by):
+    lines = ["| case | " + " | ".join(names) + " |", "|---|" + "---|" * len(names)]
     for c in all_cases:
-        cells = []
-        for n in names:
-            r = by.get((c.key, n))
-            cells.append(cell(r["outcome"], r) if r else "not run")
+        cells = [cell(by[(c.key, n)]["outcome"], by[(c.key, n)]) if (c.key, n) in by else "not run" for n in names]
         lines.append(f"| `{c.key}` | " + " | ".join(cells) + " |")
-    lines.append("")
-    fails = [r for r in rows if r["outcome"] == "FAILS"]
-    lines.append(f"**{len(fails)} of {len(rows)} runs FAIL.**" if fails else f"No run fails ({len(rows)} runs).")
-    lines.append("")
-    if fails:
-        lines.append("## Runs that FAIL")
-        lines.append("")
-        for r in fails:
-            lines.append(f"- `{r['case']}` / {r['method']}: {r['note']}")
-        lines.append("")
-    lines.append("## Every run")
-    lines.append("")
-    lines.append("Energy drift: (E − E0) / scale at the communication point where its magnitude is largest (signed: − "
-                 "is a loss), or for dissipative cases the largest gain (the scale is named with each case). Run time: "
-                 "the stepping loop through fmpy, reading every output at every communication point (full mode: median "
-                 f"of {REPEATS} runs; quick mode: one run). "
-                 "Peers: MuJoCo on the same problem where measured (full mode).")
-    lines.append("")
-    lines.append("| case | method | outcome | error | energy drift | max \\|q\\|−1 | run time | peers | details |")
-    lines.append("|---|---|---|---|---:|---:|---:|---|---|")
+    return "\n".join(lines)
+
+
+def runs_table(all_cases, names, by, peers):
+    lines = ["| case | method | outcome | error | energy drift | max \\|q\\|−1 | run time | peers | details |",
+             "|---|---|---|---|---:|---:|---:|---|---|"]
     for c in all_cases:
         for n in names:
             r = by.get((c.key, n))
@@ -1128,29 +1085,32 @@ def write_table(path, all_cases, methods, rows, quick, peers, elapsed):
             err = r["error"].replace("|", "\\|")
             lines.append(f"| `{c.key}` | {n} | {cell(r['outcome'], r)} | {err} | {fmt(r['drift'])} | "
                          f"{fmt(r['qnorm'])} | {fmt_time(r['time'])} | {peer or '—'} | {note or '—'} |")
-    lines.append("")
-    lines.append("## Cases and criteria")
-    lines.append("")
-    for c in all_cases:
-        lines.append(f"- **`{c.key}`** — {c.title}. *Criteria:* {c.criteria}.")
-    lines.append("")
-    if peers and peers.get("_about"):
-        lines.append("## Peers")
-        lines.append("")
-        lines.append(peers["_about"])
-        lines.append("")
-    lines.append("## Reading the table")
-    lines.append("")
-    lines.append("- The stiff spring's divergence is the master's: it holds the force over a communication step "
-                 "(explicit coupling), which makes the sampled-data loop unstable once k is large for H; the "
-                 "continuous system is stable for every k. The suite checks that the FMU itself never answered fmi2OK "
-                 "with a non-finite value while the loop diverged, and reports the k at which the loop broke beside "
-                 "the prediction from the map's spectral radius.")
-    lines.append("- Torque-free cases keep the world angular momentum L constant by construction (L' = T = 0), so "
-                 "their energy error comes from the orientation only: it is bounded by the inertia ratio but can reach "
-                 "it (the needle: 1e6).")
+    return "\n".join(lines)
+
+
+def write_table(path, all_cases, methods, rows, quick, peers, elapsed):
+    """docs/reports/stability.md: templates/stability.md filled with the runs' figures."""
+    by = {(r["case"], r["method"]): r for r in rows}
+    names = [n for n, _, _ in methods]
+    fails = [r for r in rows if r["outcome"] == "FAILS"]
+    text = template.fill("stability", {
+        "mode_flag": " --quick" if quick else "",
+        "source": source_state(),
+        "case_count": len(all_cases), "method_count": len(names), "method_names": ", ".join(names),
+        "elapsed": f"{elapsed:.0f}",
+        "mode": ("Quick mode: shorter runs (1e5 instead of 1e7 steps, 20 s instead of 100 s of tumbling, "
+                 "fewer communication steps)." if quick else "Full mode."),
+        "summary_table": summary_table(all_cases, names, by),
+        "verdict": f"**{len(fails)} of {len(rows)} runs FAIL.**" if fails else f"No run fails ({len(rows)} runs).",
+        "failing_runs": ("## Runs that FAIL\n\n" + "".join(f"- `{r['case']}` / {r['method']}: {r['note']}\n"
+                                                           for r in fails) + "\n") if fails else "",
+        "repeats": REPEATS,
+        "runs_table": runs_table(all_cases, names, by, peers),
+        "criteria": "\n".join(f"- **`{c.key}`** — {c.title}. *Criteria:* {c.criteria}." for c in all_cases),
+        "peers_section": f"## Peers\n\n{peers['_about']}\n\n" if peers and peers.get("_about") else "",
+    })
     pathlib.Path(path).parent.mkdir(parents=True, exist_ok=True)
-    pathlib.Path(path).write_text("\n".join(lines) + "\n")
+    pathlib.Path(path).write_text(text)
 
 
 def run_peers(quick, out_json):

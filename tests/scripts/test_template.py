@@ -1,0 +1,40 @@
+"""Report templates (scripts/reports/template.py): a template and its values match
+exactly, so a report can have neither a hole nor a figure computed for nothing."""
+import pytest
+from reports.template import TemplateError, fields, fill
+
+
+def write(tmp_path, text):
+    (tmp_path / "t.md").write_text(text, encoding="utf-8")
+
+
+def test_a_template_is_filled_with_its_values(tmp_path):
+    write(tmp_path, "# {title}\n\n{count} runs, {count} again; braces {{kept}}.\n")
+    assert fill("t", {"title": "Stability", "count": 3}, folder=tmp_path) == \
+        "# Stability\n\n3 runs, 3 again; braces {kept}.\n"
+
+
+def test_a_missing_or_unused_value_is_refused(tmp_path):
+    write(tmp_path, "{a} and {b}\n")
+    with pytest.raises(TemplateError, match=r"no value for \['b'\]"):
+        fill("t", {"a": 1}, folder=tmp_path)
+    with pytest.raises(TemplateError, match=r"no placeholder for \['c'\]"):
+        fill("t", {"a": 1, "b": 2, "c": 3}, folder=tmp_path)
+
+
+def test_placeholders_are_bare_names():
+    assert fields("{x} {y} {x}") == ["x", "y"]
+    for bad in ("{x:.3f}", "{x!r}", "{x.y}", "{0}"):
+        with pytest.raises(TemplateError):
+            fields(bad)
+
+
+def test_the_stability_template_names_every_value_its_report_gives():
+    # the shipped template parses and asks for the values stability.py fills
+    from pathlib import Path
+
+    from reports import template
+    text = (Path(template.FOLDER) / "stability.md").read_text(encoding="utf-8")
+    assert set(fields(text)) == {"mode_flag", "source", "case_count", "method_count", "method_names", "elapsed",
+                                 "mode", "summary_table", "verdict", "failing_runs", "repeats", "runs_table",
+                                 "criteria", "peers_section"}

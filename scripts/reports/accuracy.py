@@ -38,6 +38,7 @@ import time
 
 import numpy as np
 
+from reports import template
 from reports.fmu_build import ensure_core, package
 from reports.provenance import source_state
 from rigidfmu import driver
@@ -606,154 +607,95 @@ def order_text(c):
     return f"{c['slope']:.2f}"
 
 
-def write_markdown(path, results, model_methods, meta):
-    L = []
-    L.append("# Accuracy of the integration methods")
-    L.append("")
-    L.append(f"Written by `scripts/reports/accuracy.py{meta['args']}` on {meta['date']} "
-             f"({meta['cpu']}, {meta['source']}). Do not edit by hand; rerun `./scripts/report_accuracy.sh`.")
-    L.append("")
-    L.append("Methods found in the FMU's `SolverMethod` enumeration: " +
-             ", ".join(f"`{n}` = {v}" for n, v, _ in model_methods) + ".")
-    L.append("")
-    L.append("**How it is measured.** Each problem is a scene turned into an FMU; each "
-             "method runs through fmpy's `FMU2Slave` (no `simulate_fmu`) with "
-             f"`solver.step` = h (steps that divide the communication step of {COMM:g} s), "
-             "or, for an adaptive method when the FMU has `solver.tolerance`, over "
-             "tolerances with `solver.step` = the communication step (it is then also run "
-             "in fixed-step use, tolerance 0). The energy audit (`solver.energyGainLimit`, "
-             "which refuses explicit Euler's energy gain on a free rotation) is off: this "
-             "report measures the methods' errors. The error at the end time T is measured "
-             "against a reference computed by this script, not by the code under test. "
-             f"Wall time per simulated second: median of {meta['runs']} timed run(s) of "
-             "the `fmi2DoStep` calls alone (one instance per configuration, `fmi2Reset` "
-             "between runs; instantiation and initialisation not timed); "
-             "single thread, the FMU's whole scene. "
-             "Internal steps: from the `solver.steps` output where the FMU has it, else T/h.")
-    L.append("")
-    L.append("**Measured order**: least-squares slope of log error against log h (against "
-             "log tolerance for the adaptive method) over the points in the asymptotic "
-             "range: error below 3 % of the problem's scale (1 rad, 10 m, …) and above the "
-             "rounding floor (from the first point where the error stops falling once below "
-             "1e-8 of the scale). *exact to rounding*: every error is at the floor (the "
-             "method is exact for that solution, e.g. rk4 on a parabola). *not in its "
-             "asymptotic range*: fewer than two usable points, or a method known not to "
-             "converge smoothly there (explicit Euler near the intermediate axis drifts "
-             "across the separatrix: an O(1) orientation error at every practical step).")
-    L.append("")
-    L.append("Expected orders: " + ", ".join(f"{k} {v:g} (± {ORDER_TOLERANCE[k]:g})"
-                                           for k, v in EXPECTED_ORDER.items()) +
-             f"; adaptive, error vs tolerance: ~{ADAPTIVE_ORDER:g} (± {ADAPTIVE_TOLERANCE:g}); "
-             "on the torque-free problems symplecticEuler 2 (without forces its drift is "
-             "the splitting's free rotation). A slope steeper than expected passes up to a "
-             "further 0.5 (a small leading "
-             "error coefficient steepens the slope before the asymptotic range); a sweep "
-             "whose error does not fall at all fails (*no convergence*). "
-             "Methods not in this list are reported, not judged. `--quick` returns a "
-             "non-zero exit status when a judged order fails.")
-    L.append("")
-    fails = [(p, c) for p, curves in results for c in curves if c["verdict"].startswith("FAIL")]
-    L.append("## Findings")
-    L.append("")
-    if fails:
-        for p, c in fails:
+def findings(results):
+    """One line per failed order, then the problems' notes."""
+    lines = []
+    for p, curves in results:
+        for c in curves:
+            if not c["verdict"].startswith("FAIL"):
+                continue
             errs = [r["error"] for r in c["rows"] if r["error"] is not None]
             extra = (f" The error does not fall with the step: {min(errs):.3g} to "
                      f"{max(errs):.3g} {p.unit} over the sweep, so the FMU's result itself "
                      "is off the reference." if c["status"] == "no convergence" and errs else "")
-            L.append(f"- **{c['label']}** on *{p.title}*: {c['verdict']}, measured order "
-                     f"{order_text(c)}, expected {c['expected']:g} ± {c['tol']:g}.{extra}")
-    else:
-        L.append("- Every judged order is within its tolerance.")
-    for p, _ in results:
-        if p.note:
-            L.append(f"- *{p.title}*: {p.note}")
-    L.append("")
-    L.append("## Measured orders")
-    L.append("")
+            lines.append(f"- **{c['label']}** on *{p.title}*: {c['verdict']}, measured order "
+                         f"{order_text(c)}, expected {c['expected']:g} ± {c['tol']:g}.{extra}")
+    if not lines:
+        lines.append("- Every judged order is within its tolerance.")
+    lines += [f"- *{p.title}*: {p.note}" for p, _ in results if p.note]
+    return "\n".join(lines)
+
+
+def order_cell(c):
+    v = c["verdict"]
+    if v == "pass":
+        return order_text(c)
+    if v == "exact to rounding":
+        return "exact" + (f" ({order_text(c)})" if c["slope"] is not None else "")
+    if v.startswith("not in"):
+        return f"{order_text(c)} (not asymptotic)" if c["slope"] is not None else "not asymptotic"
+    if v.startswith(("not judged", "unknown")):
+        return f"{order_text(c)} (not judged)"
+    return f"**{order_text(c)} {v}**"
+
+
+def cost_cell(problem, c):
+    hit = [r for r in c["rows"] if r["error"] is not None and r["wall"] is not None
+           and r["error"] <= 1e-6 * problem.scale]
+    if not hit:
+        return "not reached"
+    r = min(hit, key=lambda r: r["wall"])
+    return f"{r['wall'] * 1e3:.3g} ms ({fmt_x(c, r['x'])})"
+
+
+def problem_table(results, labels, cell_of):
+    """A row per problem, a column per method label: cell_of(problem, curve)."""
+    lines = ["| problem | " + " | ".join(labels) + " |", "|---|" + "---:|" * len(labels)]
+    for problem, curves in results:
+        by = {c["label"]: c for c in curves}
+        cells = [cell_of(problem, by[lab]) if lab in by else "" for lab in labels]
+        lines.append(f"| {problem.title} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def problem_section(problem, curves):
+    L = [f"## {problem.title}", "", f"**What it tests.** {problem.tests}", "",
+         f"**Reference.** {problem.reference} Scale for the order fit: {problem.scale:g} {problem.unit}.", ""]
+    if problem.note:
+        L += [f"**Finding.** {problem.note}", ""]
+    L += [f"![{problem.title}](accuracy/{problem.key}.png)", "",
+          f"| method | step h / tolerance | error at T ({problem.unit}) | internal steps | ms per simulated s |",
+          "|---|---:|---:|---:|---:|"]
+    for c in curves:
+        for i, r in enumerate(c["rows"]):
+            err = ("failed: " + (r["failure"] or "")[:60]) if r["error"] is None \
+                else f"{r['error']:.3e}" + ("" if i in c["used"] else " ·")
+            wall = "–" if r["wall"] is None else f"{r['wall'] * 1e3:.4g}"
+            internal = "–" if r["internal"] is None else str(r["internal"])
+            L.append(f"| {c['label'] if i == 0 else ''} | {fmt_x(c, r['x'])} | {err} | {internal} | {wall} |")
+        exp = "–" if c["expected"] is None else f"{c['expected']:g}"
+        L.append(f"| | **order** | **{order_text(c)}** (expected {exp}: {c['verdict']}) | | |")
+    L += ["", "(· = point left out of the order fit: saturated or at the rounding floor.)", ""]
+    return "\n".join(L)
+
+
+def write_markdown(path, results, model_methods, meta):
+    """docs/reports/accuracy.md: templates/accuracy.md filled with the sweeps' figures."""
     labels = []
     for _, curves in results:
-        for c in curves:
-            if c["label"] not in labels:
-                labels.append(c["label"])
-    L.append("| problem | " + " | ".join(labels) + " |")
-    L.append("|---|" + "---:|" * len(labels))
-    for problem, curves in results:
-        by = {c["label"]: c for c in curves}
-        cells = []
-        for lab in labels:
-            c = by.get(lab)
-            if c is None:
-                cells.append("")
-                continue
-            v = c["verdict"]
-            if v == "pass":
-                cells.append(order_text(c))
-            elif v == "exact to rounding":
-                cells.append("exact" + (f" ({order_text(c)})" if c["slope"] is not None else ""))
-            elif v.startswith("not in"):
-                cells.append(f"{order_text(c)} (not asymptotic)" if c["slope"] is not None
-                             else "not asymptotic")
-            elif v.startswith("not judged"):
-                cells.append(f"{order_text(c)} (not judged)")
-            elif v.startswith("unknown"):
-                cells.append(f"{order_text(c)} (not judged)")
-            else:
-                cells.append(f"**{order_text(c)} {v}**")
-        L.append(f"| {problem.title} | " + " | ".join(cells) + " |")
-    L.append("")
-    L.append("## Cost: wall time per simulated second at the step where each method first "
-             "meets an error of 1e-6 of the problem's scale")
-    L.append("")
-    L.append("| problem | " + " | ".join(labels) + " |")
-    L.append("|---|" + "---:|" * len(labels))
-    for problem, curves in results:
-        by = {c["label"]: c for c in curves}
-        cells = []
-        for lab in labels:
-            c = by.get(lab)
-            if c is None:
-                cells.append("")
-                continue
-            hit = [r for r in c["rows"] if r["error"] is not None and r["wall"] is not None
-                   and r["error"] <= 1e-6 * problem.scale]
-            if hit:
-                r = min(hit, key=lambda r: r["wall"])
-                cells.append(f"{r['wall'] * 1e3:.3g} ms ({fmt_x(c, r['x'])})")
-            else:
-                cells.append("not reached")
-        L.append(f"| {problem.title} | " + " | ".join(cells) + " |")
-    L.append("")
-    for problem, curves in results:
-        L.append(f"## {problem.title}")
-        L.append("")
-        L.append(f"**What it tests.** {problem.tests}")
-        L.append("")
-        L.append(f"**Reference.** {problem.reference} Scale for the order fit: "
-                 f"{problem.scale:g} {problem.unit}.")
-        L.append("")
-        if problem.note:
-            L.append(f"**Finding.** {problem.note}")
-            L.append("")
-        L.append(f"![{problem.title}](accuracy/{problem.key}.png)")
-        L.append("")
-        L.append(f"| method | step h / tolerance | error at T ({problem.unit}) | internal steps "
-                 "| ms per simulated s |")
-        L.append("|---|---:|---:|---:|---:|")
-        for c in curves:
-            for i, r in enumerate(c["rows"]):
-                err = ("failed: " + (r["failure"] or "")[:60]) if r["error"] is None \
-                    else f"{r['error']:.3e}" + ("" if i in c["used"] else " ·")
-                wall = "–" if r["wall"] is None else f"{r['wall'] * 1e3:.4g}"
-                internal = "–" if r["internal"] is None else str(r["internal"])
-                L.append(f"| {c['label'] if i == 0 else ''} | {fmt_x(c, r['x'])} | {err} | "
-                         f"{internal} | {wall} |")
-            exp = "–" if c["expected"] is None else f"{c['expected']:g}"
-            L.append(f"| | **order** | **{order_text(c)}** (expected {exp}: {c['verdict']}) | | |")
-        L.append("")
-        L.append("(· = point left out of the order fit: saturated or at the rounding floor.)")
-        L.append("")
-    path.write_text("\n".join(L) + "\n")
+        labels += [c["label"] for c in curves if c["label"] not in labels]
+    text = template.fill("accuracy", {
+        "args": meta["args"], "date": meta["date"], "cpu": meta["cpu"], "source": meta["source"],
+        "methods": ", ".join(f"`{n}` = {v}" for n, v, _ in model_methods),
+        "comm": f"{COMM:g}", "runs": meta["runs"],
+        "expected": ", ".join(f"{k} {v:g} (± {ORDER_TOLERANCE[k]:g})" for k, v in EXPECTED_ORDER.items()),
+        "adaptive_order": f"{ADAPTIVE_ORDER:g}", "adaptive_tolerance": f"{ADAPTIVE_TOLERANCE:g}",
+        "findings": findings(results),
+        "orders_table": problem_table(results, labels, lambda p, c: order_cell(c)),
+        "cost_table": problem_table(results, labels, cost_cell),
+        "problems": "\n".join(problem_section(p, curves) for p, curves in results),
+    })
+    path.write_text(text)
 
 
 # ----------------------------------------------------------------------------------

@@ -397,8 +397,7 @@ std::string acceptContactMemory(const rigid::WorldModel& m, rigid::WorldData& d)
     if (p.a < 0 || p.a >= bodies || !(pair || onSurface))
       return "the serialized state is corrupt (a contact point names no body or surface of this scene)";
   }
-  rigid::movePoints(d.contactMemory, d.sleep.memory,
-                    [&](const rigid::ContactMemory& p) { return d.sleep.asleep[static_cast<size_t>(p.a)] != 0; });
+  rigid::setAsideSleeping(d.sleep, d.contactMemory);  // the sleepers' points wait in the sleep state
   return "";
 }
 

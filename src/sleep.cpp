@@ -115,8 +115,4 @@ bool updateSleep(const WorldModel& model, WorldData& data, double h, CollisionCa
   return fell;
 }
 
-void setAsideSleeping(SleepState& s, std::vector<ContactMemory>& memory) {
-  movePoints(memory, s.memory, [&](const ContactMemory& m) { return s.asleep[m.a] != 0; });
-}
-
 }  // namespace rigid

@@ -39,10 +39,4 @@ void addRestingLoads(WorldData& data, double tau);
 // long enough on a surface fall asleep (velocities zeroed). Returns whether any did.
 bool updateSleep(const WorldModel& model, WorldData& data, double h, CollisionCache& cache);
 
-// The contact memory of the sleeping bodies moved from `memory` (WorldData::
-// contactMemory, which the solver replaces by the points it solved) into the sleep
-// state's, until their island wakes (a woken island starts warm). Islands fall asleep
-// and wake seldom: a step in between moves none.
-void setAsideSleeping(SleepState& s, std::vector<ContactMemory>& memory);
-
 }  // namespace rigid

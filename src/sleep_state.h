@@ -57,6 +57,15 @@ inline SleepState awakeState(size_t bodies) {
   return s;
 }
 
+// The contact memory of the sleeping bodies moved from `memory` (WorldData::
+// contactMemory, which the solver replaces by the points it solved) into the sleep
+// state's, until their island wakes (a woken island starts warm). Islands fall asleep
+// and wake seldom: a step in between moves none. (Here, beside the state, so that the
+// FMU state's reader parts a restored memory the same way in every module build.)
+inline void setAsideSleeping(SleepState& s, std::vector<ContactMemory>& memory) {
+  movePoints(memory, s.memory, [&](const ContactMemory& m) { return s.asleep[m.a] != 0; });
+}
+
 // Wakes every body (a tunable parameter such as gravity changed); each must then be
 // still for the sleep time again before it sleeps. Their contact memory returns to
 // `memory` (WorldData::contactMemory).

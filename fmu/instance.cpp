@@ -94,7 +94,8 @@ void Instance::restart() {
   model_ = scene_.model;
   data_ = rigid::initialData(model_);
   state_ = kInstantiated;
-  startTime_ = time_ = lastSuccessfulTime_ = 0.0;
+  startTime_ = 0.0;
+  clock_.restartAt(0.0);
   wantsToTerminate_ = false;
   substepNote_.clear();
 }
@@ -143,7 +144,8 @@ Status Instance::setupExperiment(bool toleranceDefined, double tolerance, double
   if (toleranceDefined)
     log(Status::OK, "logEvents",
         "tolerance " + num(tolerance) + " noted; the fixed-step methods use solver.step instead");
-  startTime_ = time_ = lastSuccessfulTime_ = startTime;
+  startTime_ = startTime;
+  clock_.restartAt(startTime);
   return Status::OK;
 }
 
@@ -157,11 +159,11 @@ Status Instance::exitInitializationMode() {
     if (b.start.orientation.norm() < 1e-12) return error(b.name + ".orientation: must not be the zero quaternion");
   if (const std::string why = frictionConflict(model_); !why.empty()) return error(why);
   data_ = rigid::initialData(model_);
-  time_ = lastSuccessfulTime_ = startTime_;
+  clock_.restartAt(startTime_);
   state_ = kStepComplete;
   if (const std::string why = rigid::massRatioWarning(model_); !why.empty()) report(Status::Warning, why);
   log(Status::OK, "logEvents",
-      "initialised at t = " + num(time_) + " with method " + rigid::methodName(model_.method) + ", step " +
+      "initialised at t = " + num(clock_.now()) + " with method " + rigid::methodName(model_.method) + ", step " +
           num(model_.maxStep) + " s");
   return Status::OK;
 }
@@ -192,7 +194,7 @@ const Variable* Instance::lookup(uint32_t vr, bool integer) const {
 }
 
 double Instance::read(const Variable& v) const {
-  if (v.quantity == Quantity::Time) return time_;
+  if (v.quantity == Quantity::Time) return clock_.now();
   return readValue(v, model_, data_, setupPhase() ? Phase::Setup : Phase::Running);
 }
 
@@ -273,17 +275,19 @@ Status Instance::noVariablesOfType(const uint32_t vr[], size_t n) {
 Status Instance::doStep(double tc, double h, bool returnEarlyAtImpact) {
   returnedEarly_ = false;
   if (const Status s = checkStep(tc, h); s != Status::OK) return s;
+  // From here on the FMU's own time and step, not the importer's rounding of them.
+  const double t = clock_.now(), step = clock_.take(h);
   rigid::clearContactLoads(data_);  // the contact loads are this step's
-  const Interval run = advance(h, true, returnEarlyAtImpact);
-  lastStepSize_ = run.impactAt >= 0.0 ? run.impactAt : h;
-  if (!run.result.ok) return discardStep(tc, run);
+  const Interval run = advance(step, true, returnEarlyAtImpact);
+  lastStepSize_ = run.impactAt >= 0.0 ? run.impactAt : step;
+  if (!run.result.ok) return discardStep(t, run);
   if (run.impactAt >= 0.0) {
     returnedEarly_ = true;
-    time_ = lastSuccessfulTime_ = tc + run.impactAt;
-    log(Status::OK, "logEvents", inCall("returned early at the impact at t = " + num(time_) + " s"));
+    clock_.restartAt(t + run.impactAt);
+    log(Status::OK, "logEvents", inCall("returned early at the impact at t = " + num(clock_.now()) + " s"));
     return Status::OK;
   }
-  time_ = lastSuccessfulTime_ = tc + h;
+  clock_.advance(h);
   return Status::OK;
 }
 
@@ -291,9 +295,9 @@ Status Instance::checkStep(double tc, double h) const {
   if (!std::isfinite(tc)) return error("currentCommunicationPoint must be finite, got " + num(tc));
   if (!std::isfinite(h) || h <= 0.0) return error("communicationStepSize must be > 0 and finite, got " + num(h));
   // Masters that accumulate time send points that jitter by a few ulps: accept them.
-  const double tolerance = 1e-9 * std::max(1.0, std::abs(time_));
-  if (std::abs(tc - time_) > tolerance)
-    return error("currentCommunicationPoint " + num(tc) + " is not the FMU's time " + num(time_) + " (tolerance " +
+  const double time = clock_.now(), tolerance = 1e-9 * std::max(1.0, std::abs(time));
+  if (std::abs(tc - time) > tolerance)
+    return error("currentCommunicationPoint " + num(tc) + " is not the FMU's time " + num(time) + " (tolerance " +
                  num(tolerance) + ")");
   // friction set since the last step: mu_k <= mu_s, checked now that both are set
   if (const std::string why = frictionConflict(model_); !why.empty()) return error(why);
@@ -306,15 +310,16 @@ Status Instance::checkStep(double tc, double h) const {
 
 Status Instance::discardStep(double tc, const Interval& run) {
   const rigid::StepResult& r = run.result;
-  time_ = lastSuccessfulTime_ = tc + run.from;
+  clock_.restartAt(tc + run.from);
   state_ = kStepFailed;
   wantsToTerminate_ = true;
   const std::string hint = r.body >= 0 && r.cause == rigid::StepCause::None
                                ? " (inputs or parameters out of range, e.g. " + model_.bodies[r.body].name + ".force)"
                                : "";
-  return report(Status::Discard, stepFailure(r, run.to - run.from) + " after the internal step from t = " +
-                                     num(tc + run.from) + " to " + num(tc + run.to) + " s" + hint +
-                                     "; the FMU stays at t = " + num(time_) + " s and must be reset or terminated");
+  return report(Status::Discard, stepFailure(r, run.to - run.from) +
+                                     " after the internal step from t = " + num(tc + run.from) + " to " +
+                                     num(tc + run.to) + " s" + hint + "; the FMU stays at t = " + num(clock_.now()) +
+                                     " s and must be reset or terminated");
 }
 
 std::string Instance::stepFailure(const rigid::StepResult& r, double internalStep) const {
@@ -448,7 +453,7 @@ Status Instance::getState(void** state) {
     s = owned_.back().get();
     states_.insert(s);
   }
-  *s = Snapshot{model_, data_, state_, startTime_, time_, lastSuccessfulTime_, wantsToTerminate_, lastStepSize_};
+  *s = Snapshot{model_, data_, state_, startTime_, clock_, wantsToTerminate_, lastStepSize_};
   *state = s;
   return Status::OK;
 }
@@ -460,8 +465,7 @@ Status Instance::setState(void* state) {
   data_ = s->data;
   state_ = s->machineState;
   startTime_ = s->startTime;
-  time_ = s->time;
-  lastSuccessfulTime_ = s->lastSuccessfulTime;
+  clock_ = s->clock;
   wantsToTerminate_ = s->wantsToTerminate;
   lastStepSize_ = s->lastStepSize;
   substepNote_.clear();
@@ -505,7 +509,7 @@ Status Instance::serializeState(void* state, char bytes[], size_t size) {
 Status Instance::deserializeState(const char bytes[], size_t size, void** state) {
   if (!state) return error("FMUstate is NULL");
   // A fresh instance of the same scene is the frame the bytes are read into.
-  Snapshot s{scene_.model, rigid::initialData(scene_.model), kInstantiated, 0.0, 0.0, 0.0, false, 0.0};
+  Snapshot s{scene_.model, rigid::initialData(scene_.model), kInstantiated, 0.0, {}, false, 0.0};
   const std::string why = deserialize(bytes, size, guid_, s);
   if (!why.empty()) return error(why);
   const unsigned known = kInstantiated | kInitializationMode | kStepComplete | kStepFailed | kTerminated | kError;

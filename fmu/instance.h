@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "communication_clock.h"
 #include "scene.h"
 #include "snapshot.h"
 #include "status.h"
@@ -77,8 +78,8 @@ class Instance {
   // the FMU's time is that instant.
   Status doStep(double currentCommunicationPoint, double communicationStepSize, bool returnEarlyAtImpact = false);
   bool returnedEarly() const { return returnedEarly_; }
-  double lastSuccessfulTime() const { return lastSuccessfulTime_; }  // s
-  bool wantsToTerminate() const { return wantsToTerminate_; }        // after a discarded step
+  double lastSuccessfulTime() const { return clock_.now(); }   // s
+  bool wantsToTerminate() const { return wantsToTerminate_; }  // after a discarded step
 
   // Directional derivatives of outputs after the next step with respect to inputs.
   Status getDirectionalDerivative(const uint32_t unknown[], size_t nUnknown, const uint32_t known[], size_t nKnown,
@@ -152,9 +153,8 @@ class Instance {
   rigid::WorldData data_;
 
   unsigned state_ = kInstantiated;
-  double startTime_ = 0.0;  // s
-  double time_ = 0.0;       // s, time of the last communication point
-  double lastSuccessfulTime_ = 0.0;
+  double startTime_ = 0.0;         // s
+  CommunicationClock clock_;       // the time of the last communication point
   bool wantsToTerminate_ = false;  // after a discarded step (fmi2Terminated, terminateSimulation)
   bool returnedEarly_ = false;     // the last step ended at an impact (FMI 3 early return)
   std::string substepNote_;        // the sub-stepping last reported ("cause:count")

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "communication_clock.h"
 #include "world.h"
 
 namespace rigidfmu {
@@ -14,7 +15,8 @@ struct Snapshot {
   rigid::WorldModel model;  // parameters and start values as set
   rigid::WorldData data;    // state Y, inputs, counters, integrator history
   unsigned machineState = 0;
-  double startTime = 0.0, time = 0.0, lastSuccessfulTime = 0.0;
+  double startTime = 0.0;    // s
+  CommunicationClock clock;  // the FMU's time (communication_clock.h)
   bool wantsToTerminate = false;
   double lastStepSize = 0.0;  // s, the last communication step (directional derivatives)
 };
@@ -24,8 +26,8 @@ struct Snapshot {
 // 2: input derivatives; 3: energy audit, last step; 4: the contact solver's memory;
 // 5: which bodies sleep; 6: friction, surfaces' restitution, media's density and
 // viscosity, forces at load points; 7: the contact loads, and those of sleeping bodies;
-// 8: the contact points' twist impulse
-inline constexpr uint32_t kSnapshotVersion = 8;
+// 8: the contact points' twist impulse; 9: the communication clock
+inline constexpr uint32_t kSnapshotVersion = 9;
 
 // The bytes of a snapshot of a scene with this GUID.
 std::vector<char> serialize(const Snapshot& s, const std::string& guid);

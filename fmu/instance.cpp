@@ -15,6 +15,10 @@ namespace rigidfmu {
 
 namespace {
 
+// How far from unit a driven body's orientation input may be: a master's rounding or
+// interpolation of a quaternion, normalised; beyond it the input is not an orientation.
+constexpr double kUnitTolerance = 1e-3;
+
 std::string num(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", v);
@@ -301,6 +305,13 @@ Status Instance::checkStep(double tc, double h) const {
                  num(tolerance) + ")");
   // friction set since the last step: mu_k <= mu_s, checked now that both are set
   if (const std::string why = frictionConflict(model_); !why.empty()) return error(why);
+  // a driven body's orientation, set a component at a time, is whole now
+  for (size_t i = 0; i < model_.bodies.size(); ++i) {
+    const double norm = data_.drive[i].orientation.norm();
+    if (rigid::driven(model_.bodies[i]) && !(std::abs(norm - 1.0) <= kUnitTolerance))
+      return error(model_.bodies[i].name + ".orientation: must be a unit quaternion (its norm within " +
+                   num(kUnitTolerance) + " of 1; it is then normalised), got norm " + num(norm));
+  }
   const double ratio = h / model_.maxStep;
   if (ratio > 1e12)
     return error("communicationStepSize " + num(h) +
@@ -367,10 +378,19 @@ Instance::Interval Instance::advance(double h, bool reportSubsteps, bool stopAtI
       for (rigid::BodyInput& rate : d.inputRate) rate = rigid::zeroInput(rate.loads.size());
     }
   } restore{data_, setInputs};
+  // Driven bodies move from where they are to where their inputs take them (drive.h).
+  const std::vector<rigid::DrivePath> paths = drivePaths(h, reportSubsteps);
+  struct SpendRates {
+    std::vector<rigid::DriveInput>& drive;
+    ~SpendRates() {
+      for (rigid::DriveInput& in : drive) in.acceleration = in.angularAcceleration = rigid::Vec3::Zero();
+    }
+  } spend{data_.drive};
   for (long k = 0; k < n; ++k) {
     const double from = static_cast<double>(k) * model_.maxStep;
     const double to = k + 1 == n ? h : static_cast<double>(k + 1) * model_.maxStep;
     const double mid = 0.5 * (from + to);
+    if (!paths.empty()) rigid::setDriveVelocities(model_, data_, data_.drive, paths, from, to);
     for (size_t b = 0; b < data_.input.size(); ++b) {
       data_.input[b].force = setInputs[b].force + mid * data_.inputRate[b].force;
       data_.input[b].torque = setInputs[b].torque + mid * data_.inputRate[b].torque;
@@ -383,6 +403,23 @@ Instance::Interval Instance::advance(double h, bool reportSubsteps, bool stopAtI
     if (r.impactAt >= 0.0) return {r, from, to, from + r.impactAt};
   }
   return {};
+}
+
+std::vector<rigid::DrivePath> Instance::drivePaths(double h, bool reportJumps) const {
+  std::vector<rigid::DrivePath> paths;
+  for (size_t i = 0; i < model_.bodies.size(); ++i) {
+    const rigid::BodyConstants& body = model_.bodies[i];
+    if (!rigid::driven(body)) continue;
+    paths.resize(model_.bodies.size());
+    paths[i] = rigid::drivePath(data_.Y[i], data_.drive[i], h);
+    const double half = rigid::halfThickness(body.shape);
+    if (!reportJumps || !(paths[i].jump > half)) continue;
+    char text[160];
+    std::snprintf(text, sizeof text, "%.4g m, more than its half thickness %.4g m", paths[i].jump, half);
+    report(Status::Warning, body.name + ".position: the inputs moved the body by " + text +
+                                "; it moves there within the step, pushing what it meets");
+  }
+  return paths;
 }
 
 Status Instance::getDirectionalDerivative(const uint32_t unknown[], size_t nUnknown, const uint32_t known[],
@@ -537,6 +574,13 @@ Status Instance::setInputDerivatives(const uint32_t vr[], size_t n, const int32_
       return error(v->name + ": only first-order derivatives (order 1) are interpolated, got order " +
                    std::to_string(order[i]));
     if (!std::isfinite(value[i])) return error(v->name + ": must be finite, got " + num(value[i]));
+    // A driven body's motion over the step follows its velocities and their rates;
+    // its pose's derivatives are those velocities, taken from their own inputs.
+    rigid::DriveInput& drive = data_.drive[v->body];
+    if (v->quantity == Quantity::Velocity) drive.acceleration[v->component] = value[i];
+    if (v->quantity == Quantity::AngularVelocity) drive.angularAcceleration[v->component] = value[i];
+    if (v->quantity != Quantity::Force && v->quantity != Quantity::Torque && v->quantity != Quantity::LoadForce)
+      continue;
     rigid::BodyInput& rate = data_.inputRate[v->body];
     rigid::Vec3& of = v->quantity == Quantity::Force    ? rate.force
                       : v->quantity == Quantity::Torque ? rate.torque

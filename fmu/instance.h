@@ -130,6 +130,10 @@ class Instance {
     double impactAt = -1.0;       // s from the start: where an early return stopped
   };
   Interval advance(double h, bool reportSubsteps, bool stopAtImpact = false);
+  // The driven bodies' paths over a step of h (empty without driven bodies); with
+  // `reportJumps`, a warning for each whose inputs moved it by more than its half
+  // thickness: it gets there within the step, pushing what it meets.
+  std::vector<rigid::DrivePath> drivePaths(double h, bool reportJumps) const;
   // The step's arguments and the parameters set since the last step: OK, or the
   // error logged that names the argument or parameter and its limit.
   Status checkStep(double tc, double h) const;

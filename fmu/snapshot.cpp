@@ -193,6 +193,9 @@ void visitBody(Archive& a, Data& d, size_t i) {
   a(y.X), a(y.q), a(y.P), a(y.L);
   a(input.force), a(input.torque), a(rate.force), a(rate.torque);
   for (size_t k = 0; k < input.loads.size(); ++k) a(input.loads[k]), a(rate.loads[k]);
+  auto& drive = d.drive[i];  // (a free body's: its start values, unused)
+  a(drive.position), a(drive.orientation), a(drive.velocity), a(drive.angularVelocity);
+  a(drive.acceleration), a(drive.angularAcceleration);
   a.i32(d.contacts[i]);
   a(d.audit.energy[i]), a(d.audit.reference[i]), a(d.audit.carried[i]);
   a.u8(d.sleep.asleep[i]), a(d.sleep.stillFor[i]), a.i32(d.sleep.island[i]);
@@ -264,7 +267,7 @@ static_assert(fieldCount<Snapshot>() == 7,
 static_assert(fieldCount<rigid::WorldModel>() == 10,
               "a field was added to rigid::WorldModel: if a parameter sets it, visit it in visitRun "
               "(fmu/snapshot.cpp); then update this count");
-static_assert(fieldCount<rigid::BodyConstants>() == 15,
+static_assert(fieldCount<rigid::BodyConstants>() == 16,
               "a field was added to rigid::BodyConstants: if a parameter sets it, visit it in visitParameters "
               "(fmu/snapshot.cpp); then update this count");
 static_assert(fieldCount<rigid::BodyStart>() == 4,
@@ -276,7 +279,7 @@ static_assert(fieldCount<rigid::Surface>() == 12,
 static_assert(fieldCount<rigid::Medium>() == 6,
               "a field was added to rigid::Medium: if a parameter sets it, visit it in visitParameters "
               "(fmu/snapshot.cpp); then update this count");
-static_assert(fieldCount<rigid::WorldData>() == 15,
+static_assert(fieldCount<rigid::WorldData>() == 16,
               "a field was added to rigid::WorldData: unless it is derived or scratch, visit it in visitState "
               "(fmu/snapshot.cpp); then update this count");
 static_assert(fieldCount<rigid::BodyState>() == 4,
@@ -284,6 +287,9 @@ static_assert(fieldCount<rigid::BodyState>() == 4,
               "count");
 static_assert(fieldCount<rigid::BodyInput>() == 3,
               "a field was added to rigid::BodyInput: visit it in visitBody (fmu/snapshot.cpp), then update this "
+              "count");
+static_assert(fieldCount<rigid::DriveInput>() == 6,
+              "a field was added to rigid::DriveInput: visit it in visitBody (fmu/snapshot.cpp), then update this "
               "count");
 static_assert(fieldCount<rigid::WorldData::EnergyAudit>() == 3,
               "a field was added to rigid::WorldData::EnergyAudit: visit it in visitBody (fmu/snapshot.cpp), then "

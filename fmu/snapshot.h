@@ -26,7 +26,7 @@ struct Snapshot {
 // 2: input derivatives; 3: energy audit, last step; 4: the contact solver's memory;
 // 5: which bodies sleep; 6: friction, surfaces' restitution, media's density and
 // viscosity, forces at load points; 7: the contact loads, and those of sleeping bodies;
-// 8: the contact points' twist impulse; 9: the communication clock
+// 8: the contact points' twist impulse; 9: the communication clock, driven bodies' inputs
 inline constexpr uint32_t kSnapshotVersion = 9;
 
 // The bytes of a snapshot of a scene with this GUID.

@@ -43,6 +43,25 @@ const VectorQuantity kBodyVectors[] = {
     {Quantity::Torque, "torque", 3, Causality::Input, Initial::None, "N.m", "external torque, world frame"},
 };
 
+// A driven body's pose and velocities: inputs (drive.h), with the scene's as start.
+const VectorQuantity kDrivenVectors[] = {
+    {Quantity::Position, "position", 3, Causality::Input, Initial::None, "m",
+     "driven: position of its origin at the communication point, world frame"},
+    {Quantity::Orientation, "orientation", 4, Causality::Input, Initial::None, "1",
+     "driven: orientation at the communication point, quaternion body to world (made unit)"},
+    {Quantity::Velocity, "velocity", 3, Causality::Input, Initial::None, "m/s",
+     "driven: velocity over the communication step (its input derivative: the acceleration), world frame"},
+    {Quantity::AngularVelocity, "angularVelocity", 3, Causality::Input, Initial::None, "rad/s",
+     "driven: angular velocity over the communication step (its input derivative: the angular acceleration), "
+     "world frame"},
+};
+
+// The per-body vectors of a free or a driven body.
+std::vector<VectorQuantity> vectorsOf(const BodyConstants& body) {
+  if (rigid::driven(body)) return {std::begin(kDrivenVectors), std::end(kDrivenVectors)};
+  return {std::begin(kBodyVectors), std::end(kBodyVectors)};
+}
+
 std::string fmt(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", v);
@@ -66,6 +85,42 @@ void setQuatPart(rigid::Quat& q, int c, double value) {
     case 1: q.x() = value; break;
     case 2: q.y() = value; break;
     default: q.z() = value; break;
+  }
+}
+
+// The component of a pose or velocity variable in a start value.
+double startValue(const Variable& v, const rigid::BodyStart& start) {
+  switch (v.quantity) {
+    case Quantity::Position: return start.position[v.component];
+    case Quantity::Orientation: return quatPart(start.orientation, v.component);
+    case Quantity::Velocity: return start.velocity[v.component];
+    default: return start.angularVelocity[v.component];
+  }
+}
+
+// The same in a run: a free body's from its state, a driven body's its inputs' values.
+double poseValue(const Variable& v, const WorldModel& model, const WorldData& data) {
+  const int b = v.body, c = v.component;
+  if (rigid::driven(model.bodies[b])) {
+    const rigid::DriveInput& in = data.drive[b];
+    return startValue(v, {in.position, in.orientation, in.velocity, in.angularVelocity});
+  }
+  switch (v.quantity) {
+    case Quantity::Position: return data.Y[b].X[c];
+    case Quantity::Orientation: return quatPart(data.Y[b].q, c);
+    case Quantity::Velocity: return data.aux[b].V[c];
+    default: return data.aux[b].omega[c];
+  }
+}
+
+// Sets the component of a pose or velocity variable among these.
+void setMotionPart(const Variable& v, rigid::Vec3& position, rigid::Quat& orientation, rigid::Vec3& velocity,
+                   rigid::Vec3& angularVelocity, double value) {
+  switch (v.quantity) {
+    case Quantity::Position: position[v.component] = value; break;
+    case Quantity::Orientation: setQuatPart(orientation, v.component, value); break;
+    case Quantity::Velocity: velocity[v.component] = value; break;
+    default: angularVelocity[v.component] = value; break;
   }
 }
 
@@ -114,12 +169,13 @@ std::vector<Variable> modelVariables(const Scene& scene) {
   for (size_t b = 0; b < scene.model.bodies.size(); ++b) {
     const BodyConstants& body = scene.model.bodies[b];
     const int bi = static_cast<int>(b);
-    add({0, body.name + ".mass", Quantity::Mass, bi, 0, Causality::Parameter, Variability::Fixed, Initial::Exact,
-         BaseType::Real, "kg", body.name + ": mass M"});
+    if (!rigid::driven(body))
+      add({0, body.name + ".mass", Quantity::Mass, bi, 0, Causality::Parameter, Variability::Fixed, Initial::Exact,
+           BaseType::Real, "kg", body.name + ": mass M"});
     add({0, body.name + ".restitution", Quantity::Restitution, bi, 0, Causality::Parameter, Variability::Fixed,
          Initial::Exact, BaseType::Real, "1", body.name + ": coefficient of restitution xi, in [0, 1]"});
     const rigid::BodyVariables& exposed = scene.variables[b];
-    for (const VectorQuantity& q : kBodyVectors) {
+    for (const VectorQuantity& q : vectorsOf(body)) {
       const auto& chosen = q.causality == Causality::Input ? exposed.inputs : exposed.outputs;
       if (!chosen.count(q.field)) continue;
       for (int c = 0; c < q.size; ++c) {
@@ -193,7 +249,9 @@ std::vector<Variable> modelVariables(const Scene& scene) {
              name + ": force of its contacts (surfaces and bodies), world frame, " + mean);
     if (outputs.count("contactTorque"))
       vector(name + ".contactTorque", Quantity::ContactTorque, static_cast<int>(b), "N.m",
-             name + ": torque of its contacts about the centre of mass, world frame, " + mean);
+             name + ": torque of its contacts about " +
+                 (rigid::driven(bodies[b]) ? "its origin (the point its position input gives)" : "the centre of mass") +
+                 ", world frame, " + mean);
   }
   for (size_t s = 0; s < scene.model.surfaces.size(); ++s)
     if (scene.model.surfaces[s].forceOutput)
@@ -267,11 +325,10 @@ double readValue(const Variable& v, const WorldModel& model, const WorldData& da
     case Quantity::SurfaceRestitution: return model.surfaces[b].restitution;
     case Quantity::MediumDensity: return model.media[b].density;
     case Quantity::MediumViscosity: return model.media[b].viscosity;
-    case Quantity::Position: return setup ? model.bodies[b].start.position[c] : vectorPart(data.Y[b].X, c);
-    case Quantity::Orientation: return quatPart(setup ? model.bodies[b].start.orientation : data.Y[b].q, c);
-    case Quantity::Velocity: return setup ? model.bodies[b].start.velocity[c] : vectorPart(data.aux[b].V, c);
-    case Quantity::AngularVelocity:
-      return setup ? model.bodies[b].start.angularVelocity[c] : vectorPart(data.aux[b].omega, c);
+    case Quantity::Position:
+    case Quantity::Orientation:
+    case Quantity::Velocity:
+    case Quantity::AngularVelocity: return setup ? startValue(v, model.bodies[b].start) : poseValue(v, model, data);
     case Quantity::LinearMomentum:
       return setup ? vectorPart(rigid::initialState(model.bodies[b]).P, c) : data.Y[b].P[c];
     case Quantity::AngularMomentum:
@@ -359,11 +416,14 @@ std::string writeValue(const Variable& v, double value, WorldModel& model, World
     case Quantity::Orientation:
     case Quantity::Velocity:
     case Quantity::AngularVelocity:
-      if (phase != Phase::Setup) return v.name + ": an output; it can be set only before the run starts";
-      if (v.quantity == Quantity::Position) model.bodies[b].start.position[c] = value;
-      if (v.quantity == Quantity::Orientation) setQuatPart(model.bodies[b].start.orientation, c, value);
-      if (v.quantity == Quantity::Velocity) model.bodies[b].start.velocity[c] = value;
-      if (v.quantity == Quantity::AngularVelocity) model.bodies[b].start.angularVelocity[c] = value;
+      if (phase == Phase::Setup) {
+        setMotionPart(v, model.bodies[b].start.position, model.bodies[b].start.orientation,
+                      model.bodies[b].start.velocity, model.bodies[b].start.angularVelocity, value);
+        return "";
+      }
+      if (!rigid::driven(model.bodies[b])) return v.name + ": an output; it can be set only before the run starts";
+      setMotionPart(v, data.drive[b].position, data.drive[b].orientation, data.drive[b].velocity,
+                    data.drive[b].angularVelocity, value);
       return "";
     case Quantity::LinearMomentum:
     case Quantity::AngularMomentum: return v.name + ": a calculated output; set velocity or angularVelocity instead";

@@ -29,6 +29,15 @@ void setInertia(BodyConstants& body, const Mat3& Ibody) {
   body.principalFrame = Quat(axes).normalized();
 }
 
+void makeDriven(BodyConstants& body) {
+  body.motion = Motion::Driven;
+  body.inertiaFromShape = false;
+  body.mass = 1.0;
+  body.Ibody = body.IbodyInv = Mat3::Identity();
+  body.principalMoments = Vec3::Ones();
+  body.principalFrame = Quat::Identity();
+}
+
 void computeAuxiliaries(const BodyConstants& body, const BodyState& y, BodyAux& aux) {
   aux.V = y.P / body.mass;
   aux.R = rotationOf(y.q);

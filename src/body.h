@@ -27,10 +27,19 @@ struct PointLoad {
   bool bodyFrame = false;     // the force input is given in the body frame (else the world's)
 };
 
+// How a body moves: free, under the forces and contacts of the seed's dynamics, or
+// driven, its motion given by another model (the FMU's inputs, drive.h): infinite mass
+// to the contacts, which it pushes, carries and lifts free bodies with.
+enum class Motion { Free, Driven };
+
 // Body constants: fixed once a run starts.
 struct BodyConstants {
   std::string name;
   Shape shape;
+  // A driven body has mass 1 and Ibody = 1, so that its Y holds its velocities as P
+  // and L (V = P, omega = L) and every reader of velocities needs no case for it; no
+  // force acts on it and no contact moves it.
+  Motion motion = Motion::Free;
   double mass = 1.0;                       // M, kg
   Mat3 Ibody = Mat3::Identity();           // kg m^2, about the centre of mass, body frame
   Mat3 IbodyInv = Mat3::Identity();        // 1/(kg m^2); inverted once here, never per step
@@ -45,6 +54,11 @@ struct BodyConstants {
   std::vector<PointLoad> loads;            // points where input forces act
   BodyStart start;
 };
+
+inline bool driven(const BodyConstants& body) { return body.motion == Motion::Driven; }
+
+// Makes a body driven: mass 1, Ibody = 1 (see BodyConstants::motion).
+void makeDriven(BodyConstants& body);
 
 // Sets M; when the inertia comes from the shape, Ibody scales with it.
 void setMass(BodyConstants& body, double mass);

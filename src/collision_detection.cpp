@@ -528,6 +528,7 @@ struct CollisionDetector::Impl {
   std::vector<int> slotIndex;         // slot -> body or surface index
   std::vector<int> bodySlot;          // body index -> slot, -1 when it meets nothing
   std::vector<char> meetsBodies;      // per body slot: pairs with other bodies too, not only surfaces
+  std::vector<char> immovable;        // per slot: a surface or a driven body (no pair of two of them)
   std::vector<Geo> geo;               // per slot
   std::vector<Vec3> surfaceHalfAabb;  // per surface: half extents of its world AABB
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;  // per slot
@@ -562,9 +563,10 @@ struct CollisionDetector::Impl {
     return objects[slot].get();
   }
 
-  // The candidate pair of two slots whose boxes overlap; false for two surfaces.
+  // The candidate pair of two slots whose boxes overlap; false for two that nothing
+  // moves (surfaces, driven bodies): contacts answer neither.
   bool candidate(int s1, int s2, Pair& p) const {
-    if (!isBody(s1) && !isBody(s2)) return false;
+    if (immovable[s1] && immovable[s2]) return false;
     if (isBody(s1) && isBody(s2) && !(meetsBodies[s1] && meetsBodies[s2])) return false;
     if (!isBody(s1) || (isBody(s2) && slotIndex[s2] < slotIndex[s1])) std::swap(s1, s2);
     p = Pair{slotIndex[s1], -1, -1, s1, s2};
@@ -613,6 +615,7 @@ CollisionDetector::CollisionDetector(const WorldModel& model, const std::vector<
     const bool onSurfaces = !meetsSurfaces.empty() && meetsSurfaces[i];
     if (!collides[i] && !onSurfaces) continue;
     d.meetsBodies.push_back(collides[i]);
+    d.immovable.push_back(driven(model.bodies[i]));
     const Shape& s = model.bodies[i].shape;
     Geo g;
     g.type = s.type;
@@ -632,6 +635,7 @@ CollisionDetector::CollisionDetector(const WorldModel& model, const std::vector<
     g.R = s.R_WS;
     g.p = s.centre;
     d.slotIndex.push_back(static_cast<int>(j));
+    d.immovable.push_back(1);
     d.geo.push_back(g);
     d.surfaceHalfAabb.push_back(aabbHalfExtent(g));
   }

@@ -35,7 +35,8 @@ Softness makeSoft(double hertz, double zeta, double h) {
 }
 
 // A body as the solver sees it; the last slot stands for every surface (no inverse
-// mass or inertia, never moves).
+// mass or inertia, never moves). A driven body has none either, and moves at its
+// velocities whatever the rows do.
 struct Body {
   double invMass = 0.0;
   Mat3 invInertia = Mat3::Zero();             // 1/(kg m^2), world frame, at the step's start
@@ -48,6 +49,10 @@ struct Body {
   // some row gave it an impulse: else the integrator's free motion stands (its order,
   // not the sub-steps' first order, for a body that only comes within the margin)
   bool pushed = false;
+  // A driven body: the impulse the rows gave it and its moment about its centre (N s,
+  // N m s), which nothing else records (its velocities do not change).
+  bool driven = false;
+  Vec3 felt = Vec3::Zero(), feltMoment = Vec3::Zero();
 };
 
 // One direction of a row: an impulse lambda acts +lambda along it on b, -lambda on a.
@@ -77,6 +82,8 @@ void applyImpulse(Body& A, Body& B, const Jacobian& j, double lambda) {
   A.w -= lambda * j.spinA;
   B.v += lambda * B.invMass * j.linear;
   B.w += lambda * j.spinB;
+  if (A.driven) A.felt -= lambda * j.linear, A.feltMoment -= lambda * j.angularA;
+  if (B.driven) B.felt += lambda * j.linear, B.feltMoment += lambda * j.angularB;
 }
 
 // One contact point's normal row.
@@ -145,9 +152,16 @@ void prepareBody(const WorldModel& model, const WorldData& data, double hSub, in
   const BodyState& y = data.Y[i];
   BodyAux aux;
   computeVelocities(constants, y, aux);
-  accumulateAppliedForces(model, constants, data.input[i], y, aux);
   Body& b = s.bodies[i];
   b = Body{};
+  if (driven(constants)) {  // infinitely heavy, at its velocities, no force acting
+    b.driven = true;
+    b.v = b.v0 = aux.V;
+    b.w = b.w0 = aux.omega;
+    b.q = b.q0 = y.q.normalized();
+    return;
+  }
+  accumulateAppliedForces(model, constants, data.input[i], y, aux);
   b.invMass = 1.0 / constants.mass;
   b.invInertia = aux.R * constants.IbodyInv * aux.R.transpose();
   b.v = b.v0 = aux.V;
@@ -253,7 +267,8 @@ void prepareRows(const WorldModel& model, const WorldData& data, const std::vect
     m.a = c.a;
     m.b = c.b >= 0 ? c.b : s.staticSlot();
     m.surface = c.surface;
-    m.soft = c.b >= 0 ? soft : stiff;
+    const bool immovable = c.b < 0 || driven(model.bodies[c.a]) || driven(model.bodies[c.b]);
+    m.soft = immovable ? stiff : soft;
     m.radius = c.patchRadius;
     addPoints(model, data, contacts, i, end, restingSpeed, m, s);
     i = end;
@@ -575,6 +590,11 @@ void commitBodies(const WorldModel& model, const WorldData& data, const Solver& 
                   std::vector<BodyState>& next, ContactImpulses& out) {
   for (int i : s.moving) {
     const Body& b = s.bodies[i];
+    if (b.driven) {  // it moves as driven (the integrator's step); what it felt is its load
+      out.linear[i] = b.felt;
+      out.angular[i] = b.feltMoment;
+      continue;
+    }
     if (!b.pushed) continue;
     const BodyConstants& constants = model.bodies[i];
     const BodyState& y = data.Y[i];

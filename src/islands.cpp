@@ -14,16 +14,22 @@ int rootOf(std::vector<int>& parent, int i) {
 
 }  // namespace
 
-void findIslands(const std::vector<Contact>& contacts, int n, Islands& islands) {
+void findIslands(const WorldModel& model, const std::vector<Contact>& contacts, Islands& islands) {
+  const int n = static_cast<int>(model.bodies.size());
+  auto isDriven = [&](int i) { return driven(model.bodies[i]); };
   std::vector<int>& root = islands.root;
   root.resize(n);
   std::iota(root.begin(), root.end(), 0);
   for (const Contact& c : contacts)
-    if (c.b >= 0) root[rootOf(root, c.a)] = rootOf(root, c.b);
+    if (c.b >= 0 && !isDriven(c.a) && !isDriven(c.b)) root[rootOf(root, c.a)] = rootOf(root, c.b);
   for (int i = 0; i < n; ++i) root[i] = rootOf(root, i);
   islands.grounded.assign(n, 0);
   for (const Contact& c : contacts)
     if (c.b < 0) islands.grounded[root[c.a]] = 1;
+  for (const Contact& c : contacts) {  // (a driven body meets no surface: c.b >= 0)
+    if (c.b >= 0 && isDriven(c.a)) islands.grounded[root[c.b]] = 0;
+    if (c.b >= 0 && isDriven(c.b)) islands.grounded[root[c.a]] = 0;
+  }
 }
 
 }  // namespace rigid

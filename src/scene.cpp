@@ -222,16 +222,38 @@ double rollingResistance(const Object& o) {
   return e;
 }
 
+// "motion": "free" (the default) or "driven" (drive.h). A driven body's motion comes
+// from its inputs: it has no mass, no force inputs and no load points, and it acts
+// only through its contacts.
+Motion readMotion(const Object& o) {
+  const std::string motion = o.string("motion", "free");
+  if (motion == "free") return Motion::Free;
+  if (motion != "driven") fail(o.path("motion"), "must be one of free, driven, got \"" + motion + "\"");
+  for (const char* key : {"mass", "inertia", "loads", "inputs"})
+    if (o.has(key))
+      fail(o.path(key),
+           "not for a driven body: its motion comes from its inputs (position, orientation, velocity, "
+           "angularVelocity) and no force moves it");
+  if (!o.boolean("collision", true))
+    fail(o.path("collision"), "a driven body must collide: it acts on the world only through its contacts");
+  return Motion::Driven;
+}
+
 BodyConstants readBody(const json& j, const std::string& path) {
   Object o(j, path,
-           {"name", "shape", "mass", "inertia", "position", "orientation", "velocity", "angularVelocity", "restitution",
-            "staticFriction", "kineticFriction", "rollingResistance", "collision", "outputs", "inputs", "loads"});
+           {"name", "shape", "motion", "mass", "inertia", "position", "orientation", "velocity", "angularVelocity",
+            "restitution", "staticFriction", "kineticFriction", "rollingResistance", "collision", "outputs", "inputs",
+            "loads"});
   BodyConstants b;
   b.name = identifier(o, "name");
   if (!o.has("shape")) fail(o.path("shape"), "is required");
   b.shape = readShape(o.at("shape"), o.path("shape"));
-  setMass(b, positive(o, "mass"));
-  if (o.has("inertia")) setInertia(b, readInertia(o.at("inertia"), o.path("inertia")));
+  if (readMotion(o) == Motion::Driven) {
+    makeDriven(b);
+  } else {
+    setMass(b, positive(o, "mass"));
+    if (o.has("inertia")) setInertia(b, readInertia(o.at("inertia"), o.path("inertia")));
+  }
   b.start.position = o.vec3("position", Vec3::Zero());
   b.start.orientation = unitQuaternion(o, "orientation");
   b.start.velocity = o.vec3("velocity", Vec3::Zero());
@@ -274,10 +296,41 @@ std::set<std::string> nameList(const Object& o, const char* key, const std::vect
   return names;
 }
 
+// A moving surface ("motion": "driven": a platform, an elevator, a paddle) is a driven
+// body with the surface's box as its shape, centred between min and max, turned by
+// its orientation; its pose and velocities are inputs like any driven body's.
+BodyConstants readMovingSurface(const json& j, const std::string& path) {
+  Object o(j, path,
+           {"name", "motion", "min", "max", "orientation", "velocity", "angularVelocity", "staticFriction",
+            "kineticFriction", "restitution", "rollingResistance", "outputs"});
+  BodyConstants b;
+  b.name = identifier(o, "name");
+  Vec3 min, max;
+  readBox(o, min, max);
+  b.shape.type = ShapeType::Box;
+  b.shape.size = max - min;
+  readMotion(o);
+  makeDriven(b);
+  b.start.position = 0.5 * (min + max);
+  b.start.orientation = unitQuaternion(o, "orientation");
+  b.start.velocity = o.vec3("velocity", Vec3::Zero());
+  b.start.angularVelocity = o.vec3("angularVelocity", Vec3::Zero());
+  b.restitution = inRange(o, "restitution", defaults::kRestitution, 0.0, 1.0);
+  friction(o, b.staticFriction, b.kineticFriction);
+  b.rollingResistance = rollingResistance(o);
+  return b;
+}
+
+bool moving(const json& surface) {
+  return surface.is_object() && surface.contains("motion") && surface.at("motion") == "driven";
+}
+
 Surface readSurface(const json& j, const std::string& path) {
   Object o(j, path,
-           {"name", "min", "max", "orientation", "staticFriction", "kineticFriction", "restitution",
+           {"name", "motion", "min", "max", "orientation", "staticFriction", "kineticFriction", "restitution",
             "rollingResistance", "outputs"});
+  if (o.string("motion", "static") != "static")
+    fail(o.path("motion"), "must be one of static, driven, got \"" + o.string("motion", "") + "\"");
   Surface s;
   s.name = identifier(o, "name");
   readBox(o, s.min, s.max);
@@ -356,6 +409,35 @@ void checkOneNameSpace(const WorldModel& m) {
   for (size_t i = 0; i < m.media.size(); ++i) claim(m.media[i].name, "media[" + std::to_string(i) + "]");
 }
 
+// The FMU variables a body chooses (its "outputs" and "inputs"); a driven body's
+// inputs are always its pose and velocities.
+BodyVariables variablesOf(const json& j, const std::string& path, const BodyConstants& b) {
+  const Object body(j, path, {});
+  if (driven(b)) return {nameList(body, "outputs", kDrivenOutputs), {kDrivenInputs.begin(), kDrivenInputs.end()}};
+  return {nameList(body, "outputs", kBodyOutputs), nameList(body, "inputs", kBodyInputs)};
+}
+
+// The static surfaces into the model's surfaces; moving ones become driven bodies,
+// after the scene's bodies.
+void readSurfaces(const Object& o, Scene& scene) {
+  if (!o.has("surfaces")) return;
+  const json& list = o.at("surfaces");
+  if (!list.is_array()) fail("surfaces", "must be an array");
+  std::set<std::string> names;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string path = "surfaces[" + std::to_string(i) + "]";
+    const Object named(list[i], path, {});
+    const std::string name = identifier(named, "name");
+    if (!names.insert(name).second) fail(path + ".name", "must be unique in surfaces, \"" + name + "\" is used twice");
+    if (!moving(list[i])) {
+      scene.model.surfaces.push_back(readSurface(list[i], path));
+      continue;
+    }
+    scene.model.bodies.push_back(readMovingSurface(list[i], path));
+    scene.variables.push_back(variablesOf(list[i], path, scene.model.bodies.back()));
+  }
+}
+
 }  // namespace
 
 Scene parseScene(const std::string& text) {
@@ -401,11 +483,9 @@ Scene parseScene(const std::string& text) {
   }
   m.bodies = readList<BodyConstants>(o, "bodies", true, readBody);
   if (m.bodies.empty()) fail("bodies", "must hold at least one body");
-  for (size_t i = 0; i < m.bodies.size(); ++i) {
-    const Object body(o.at("bodies")[i], "bodies[" + std::to_string(i) + "]", {});
-    scene.variables.push_back({nameList(body, "outputs", kBodyOutputs), nameList(body, "inputs", kBodyInputs)});
-  }
-  m.surfaces = readList<Surface>(o, "surfaces", false, readSurface);
+  for (size_t i = 0; i < m.bodies.size(); ++i)
+    scene.variables.push_back(variablesOf(o.at("bodies")[i], "bodies[" + std::to_string(i) + "]", m.bodies[i]));
+  readSurfaces(o, scene);
   m.media = readList<Medium>(o, "media", false, readMedium);
   checkOneNameSpace(m);
   scene.canonicalJson = j.dump();

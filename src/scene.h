@@ -23,6 +23,10 @@ inline const std::vector<std::string> kBodyOutputs = {"position",        "orient
                                                       "angularVelocity", "linearMomentum", "angularMomentum",
                                                       "contacts",        "contactForce",   "contactTorque"};
 inline const std::vector<std::string> kBodyInputs = {"force", "torque"};
+// A driven body's (BodyConstants::motion): its pose and velocities are always inputs;
+// it may choose among these outputs.
+inline const std::vector<std::string> kDrivenOutputs = {"contacts", "contactForce", "contactTorque"};
+inline const std::vector<std::string> kDrivenInputs = {"position", "orientation", "velocity", "angularVelocity"};
 struct BodyVariables {
   std::set<std::string> outputs;
   std::set<std::string> inputs;

@@ -69,6 +69,9 @@ WorldData initialData(const WorldModel& model) {
   d.scratch.u.resize(n);
   d.scratch.awake.resize(n);
   std::iota(d.scratch.awake.begin(), d.scratch.awake.end(), 0);
+  for (size_t i = 0; i < n; ++i)
+    if (!driven(model.bodies[i])) d.scratch.free.push_back(static_cast<int>(i));
+  d.drive = startDrive(model);
   d.scratch.held.reserve(n);
   d.scratch.felt.reserve(n);
   for (auto& k : d.scratch.k) k.resize(n);
@@ -197,13 +200,17 @@ int firstNonFinite(const WorldData& data, const std::vector<BodyState>& Y) {
   return bad;
 }
 
-// Scratch::awake from the sleep flags, after they changed.
-void listAwake(WorldData& data) {
+// Scratch::awake and Scratch::free from the sleep flags, after they changed.
+void listAwake(const WorldModel& model, WorldData& data) {
   std::vector<int>& awake = data.scratch.awake;
   if (data.sleep.sleeping == 0 && awake.size() == data.Y.size()) return;  // every body, as listed
   awake.clear();
-  for (size_t i = 0; i < data.Y.size(); ++i)
-    if (!data.sleep.asleep[i]) awake.push_back(static_cast<int>(i));
+  data.scratch.free.clear();
+  for (size_t i = 0; i < data.Y.size(); ++i) {
+    if (data.sleep.asleep[i]) continue;
+    awake.push_back(static_cast<int>(i));
+    if (!driven(model.bodies[i])) data.scratch.free.push_back(static_cast<int>(i));
+  }
 }
 
 // Y(t + tau) into next: auxiliaries -> forces -> derivative per stage, then unit q.
@@ -217,9 +224,14 @@ StepResult failed(int body) {
 // Returns the integrator's steps (0: the adaptive method failed its tolerance).
 // Sleeping bodies are not integrated: their entries of next are not theirs (commit
 // leaves them out).
+// Driven bodies move at their velocities (drive.h), never asleep.
 int advance(const WorldModel& model, WorldData& data, double tau, std::vector<BodyState>& next) {
   StageTimer timer(data, Stage::Integrate);
-  const int steps = integrate(model, data, data.scratch.awake, tau, next);
+  const std::vector<int>& free = data.scratch.free;
+  const int steps = integrate(model, data, free, tau, next);
+  if (free.size() < data.scratch.awake.size())
+    for (size_t i = 0; i < data.Y.size(); ++i)
+      if (driven(model.bodies[i])) next[i] = driveStep(data.Y[i], tau);
   if (data.profiling) data.profile.integrated += static_cast<long>(data.scratch.awake.size());
   forEachAwake(data, [&](int i) { next[i].q.normalize(); });
   return steps;
@@ -255,7 +267,7 @@ void detectContacts(StepContext& s, const std::vector<BodyState>& Y, double marg
     };
     detect();
     if (!wakeTouched(c->contacts, s.data)) return;
-    listAwake(s.data);
+    listAwake(s.model, s.data);
     detect();
   }
 }
@@ -297,13 +309,13 @@ void addLoadsAndSleep(StepContext& s, CollisionCache& c, double taken) {
   const bool mayFallAsleep = s.model.sleep.enabled && !s.data.scratch.awake.empty() && !s.model.surfaces.empty();
   if (mayFallAsleep && !c.contacts.empty()) {
     StageTimer timer(s.data, Stage::Islands);
-    findIslands(c.contacts, static_cast<int>(s.data.Y.size()), c.islands);
+    findIslands(s.model, c.contacts, c.islands);
   }
   StageTimer timer(s.data, Stage::Sleep);
   addImpulses(c.impulses, s.data.contactLoads);
   s.data.contactLoads.duration += taken;
   addRestingLoads(s.data, taken);
-  if (mayFallAsleep && updateSleep(s.model, s.data, taken, c)) listAwake(s.data);
+  if (mayFallAsleep && updateSleep(s.model, s.data, taken, c)) listAwake(s.model, s.data);
 }
 
 // The energy audit: a body whose angular momentum the step left bitwise unchanged had
@@ -588,10 +600,10 @@ void stabilitySubsteps(const WorldModel& model, const WorldData& data, double h,
   };
   // the fastest spin sets the sub-steps: one square root, not one per body
   double spin2 = 0.0;
-  for (int i : data.scratch.awake) spin2 = std::max(spin2, data.aux[i].omega.squaredNorm());
+  for (int i : data.scratch.free) spin2 = std::max(spin2, data.aux[i].omega.squaredNorm());
   consider(std::sqrt(spin2), limits.spin, StepCause::Spin);
   if constexpr (modules::kMedia) {
-    for (int i : data.scratch.awake) {
+    for (int i : data.scratch.free) {
       for (const Medium& medium : model.media) {
         const MediumRates rates = mediumRates(medium, model.bodies[i], data.Y[i], data.aux[i], model.gravity);
         consider(rates.damping, limits.damping, StepCause::Drag);
@@ -639,7 +651,7 @@ StepResult step(const WorldModel& model, WorldData& data, double h, bool stopAtI
   // (Fast bodies cost a collision detection per sub-step, hence their lower cap.)
   constexpr long kMaxSubsteps = 1000000;
   constexpr long kMaxFastSubsteps = 10000;
-  listAwake(data);  // between steps the FMU may restore a state or wake every body
+  listAwake(model, data);  // between steps the FMU may restore a state or wake every body
   StepResult plan = substepPlan(model, data, h);
   if (plan.substeps > (plan.cause == StepCause::FastBody ? kMaxFastSubsteps : kMaxSubsteps)) {
     plan.ok = false;
@@ -648,7 +660,7 @@ StepResult step(const WorldModel& model, WorldData& data, double h, bool stopAtI
   if (data.profiling) data.profile.steps += plan.substeps;
   if constexpr (modules::kCollisions) {
     StageTimer timer(data, Stage::Wake);
-    if (wakeDriven(data)) listAwake(data);
+    if (wakeDriven(data)) listAwake(model, data);
   }
   StepContext context{model, data, h / static_cast<double>(plan.substeps), bouncyWorld(model), stopAtImpact};
   for (long k = 0; k < plan.substeps; ++k) {
@@ -665,7 +677,7 @@ StepResult step(const WorldModel& model, WorldData& data, double h, bool stopAtI
 std::string massRatioWarning(const WorldModel& model) {
   int light = -1, heavy = -1;
   for (size_t i = 0; i < model.bodies.size(); ++i) {
-    if (!model.bodies[i].collides) continue;
+    if (!model.bodies[i].collides || driven(model.bodies[i])) continue;
     const int k = static_cast<int>(i);
     if (light < 0 || model.bodies[i].mass < model.bodies[light].mass) light = k;
     if (heavy < 0 || model.bodies[i].mass > model.bodies[heavy].mass) heavy = k;

@@ -8,6 +8,7 @@
 
 #include "body.h"
 #include "contact_memory.h"
+#include "drive.h"
 #include "integrator.h"
 #include "medium.h"
 #include "sleep_state.h"
@@ -44,6 +45,7 @@ struct Scratch {
   std::vector<BodyState> y, y4;  // the adaptive method's current state and its 4th-order solution
   std::vector<Vec3> u;           // Lie-group stages: rotation vector of each body
   std::vector<int> awake;        // the bodies not asleep, ascending: what a step moves, checks and refreshes
+  std::vector<int> free;         // the awake free bodies (not driven), ascending: what the integrator moves
   std::vector<int> held, felt;   // RK4: bodies whose forces are held over the step, and the others
 };
 
@@ -82,6 +84,9 @@ struct WorldData {
   // Their rates of change over the current communication step (N/s, N m/s): the FMU's
   // input derivatives; zero unless a master sets them.
   std::vector<BodyInput> inputRate;
+  // What the inputs of the driven bodies say (drive.h), one per body (a free body's is
+  // unused). The FMU turns them into the driven bodies' velocities of each internal step.
+  std::vector<DriveInput> drive;
   std::vector<BodyAux> aux;   // V, R and omega of Y, valid after initialise() and step()
   std::vector<int> contacts;  // contact points of each body at the end of the last step
   // The energy audit (world.cpp), per body: twice the rotational energy of Y, that at

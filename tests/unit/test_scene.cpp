@@ -442,3 +442,56 @@ TEST(Scene, ExposedInputTwice) {
 TEST(Scene, ExposedListNotAnArray) {
   EXPECT_SCENE_ERROR(sceneWith(R"(, "inputs": "force")"), "bodies[0].inputs: must be an array of names");
 }
+
+// ---- driven bodies and moving surfaces (drive.h) ---------------------------------------
+
+std::string drivenScene(const std::string& extra) {
+  return R"({"name": "D", "bodies": [{"name": "pusher", "motion": "driven", )"
+         R"("shape": {"type": "box", "size": [1, 1, 0.1]})" +
+         extra + "}]}";
+}
+
+TEST(Scene, ADrivenBodyHasUnitMassAndItsStartValuesAsInputs) {
+  const rigid::Scene s = rigid::parseScene(drivenScene(R"(, "position": [1, 2, 3], "velocity": [0.5, 0, 0])"));
+  const rigid::BodyConstants& b = s.model.bodies[0];
+  EXPECT_TRUE(rigid::driven(b));
+  EXPECT_EQ(b.mass, 1.0);
+  EXPECT_EQ(b.IbodyInv, rigid::Mat3::Identity());
+  EXPECT_EQ(b.start.position, rigid::Vec3(1, 2, 3));
+  EXPECT_EQ(s.variables[0].inputs, (std::set<std::string>{"position", "orientation", "velocity", "angularVelocity"}));
+  EXPECT_EQ(s.variables[0].outputs, (std::set<std::string>{"contacts", "contactForce", "contactTorque"}));
+}
+
+TEST(Scene, ADrivenBodyRefusesWhatOnlyAFreeBodyHas) {
+  for (const char* key : {"mass", "inertia", "loads", "inputs"}) {
+    const std::string expected = std::string("bodies[0].") + key + ": not for a driven body: its motion comes from";
+    EXPECT_SCENE_ERROR(drivenScene(std::string(", \"") + key + "\": 1"), expected.c_str());
+  }
+  EXPECT_SCENE_ERROR(drivenScene(R"(, "collision": false)"),
+                     "bodies[0].collision: a driven body must collide: it acts on the world only through its contacts");
+  EXPECT_SCENE_ERROR(R"({"name": "D", "bodies": [{"name": "b", "motion": "kinematic", "shape": {"type": "sphere",
+                     "radius": 1}}]})",
+                     "bodies[0].motion: must be one of free, driven, got \"kinematic\"");
+  EXPECT_SCENE_ERROR(drivenScene(R"(, "outputs": ["position"])"),
+                     "bodies[0].outputs[0]: must be one of contacts, contactForce, contactTorque, got \"position\"");
+}
+
+TEST(Scene, AMovingSurfaceIsADrivenBoxAfterTheBodies) {
+  const rigid::Scene s = rigid::parseScene(
+      sceneWith("", R"("surfaces": [{"name": "lift", "motion": "driven", "min": [-1, -2, -0.2], "max": [1, 2, 0],
+                           "orientation": [1, 0, 0, 0], "staticFriction": 0.9, "kineticFriction": 0.7}, )" +
+                        std::string(kSurface) + "], "));
+  ASSERT_EQ(s.model.bodies.size(), 2u);
+  ASSERT_EQ(s.model.surfaces.size(), 1u);
+  const rigid::BodyConstants& lift = s.model.bodies[1];
+  EXPECT_EQ(lift.name, "lift");
+  EXPECT_TRUE(rigid::driven(lift));
+  EXPECT_EQ(lift.shape.type, rigid::ShapeType::Box);
+  EXPECT_EQ(lift.shape.size, rigid::Vec3(2, 4, 0.2));
+  EXPECT_EQ(lift.start.position, rigid::Vec3(0, 0, -0.1));
+  EXPECT_EQ(lift.staticFriction, 0.9);
+  EXPECT_EQ(s.variables.size(), 2u);
+  EXPECT_SCENE_ERROR(sceneWith("", R"("surfaces": [{"name": "lift", "motion": "moving", "min": [0, 0, 0],
+                                   "max": [1, 1, 1]}], )"),
+                     "surfaces[0].motion: must be one of static, driven, got \"moving\"");
+}

@@ -33,7 +33,7 @@ from rigidfmu.driver import STATUS, Recorder, Slave, load_library
 TESTS = pathlib.Path(__file__).resolve().parent
 ROOT = TESTS.parents[1]
 SCENE_DIR = ROOT / "scripts" / "scenes"
-EXAMPLES = ["default.json", "spinner.json", "tumble.json", "thruster.json"]
+EXAMPLES = ["default.json", "spinner.json", "tumble.json", "thruster.json", "pusher.json"]
 # Set by scripts/sanitize.sh: the FMUs are the ASan/UBSan build and the runtimes are
 # preloaded (LD_PRELOAD) into this process and its children.
 SANITIZED = os.environ.get("RIGIDFMU_SANITIZED") == "1"
@@ -70,12 +70,17 @@ def outputs(slave, md):
 
 
 def input_signal(md, k, phase=0.0, amplitude=1.0):
-    """A scripted input signal: every Real input gets a different sine of step k."""
+    """A scripted input signal: every Real input gets a different sine of step k; a
+    driven body's orientation a unit quaternion turning about z by such a sine."""
     vrs, values = [], []
     for j, v in enumerate(real_inputs(md)):
         a = 5.0 if ".force[" in v.name else 0.5
         vrs.append(v.valueReference)
-        values.append(amplitude * a * math.sin(0.37 * k + 0.9 * j + phase))
+        if ".orientation[" in v.name:
+            half = 0.5 * amplitude * math.sin(0.37 * k + phase)
+            values.append([math.cos(half), 0.0, 0.0, math.sin(half)][int(v.name[-2]) - 1])
+        else:
+            values.append(amplitude * a * math.sin(0.37 * k + 0.9 * j + phase))
     return vrs, values
 
 
@@ -629,6 +634,7 @@ def run_child(code, tmp_path, timeout):
     ("spinner.json", FUZZ_SEEDS, FUZZ_CALLS),
     ("tumble.json", FUZZ_SEEDS, FUZZ_CALLS),
     ("thruster.json", FUZZ_SEEDS, FUZZ_CALLS),
+    ("pusher.json", FUZZ_SEEDS, FUZZ_CALLS),  # driven bodies and a moving surface
     # once aborted the process inside FCL (see FCL_GJK_ABORT); fixed: states beyond 1e12 m
     # or non-finite are refused before collision detection sees them
     pytest.param("default.json", [105], 800, id="default.json-seed105"),

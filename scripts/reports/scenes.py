@@ -59,6 +59,19 @@ def tumbling_scene(n):
     return scene
 
 
+def driven_scene(n):
+    """tumbling_scene(n) with every body driven (motion in, force out): the same boxes
+    at the same places, their spins and a drift of 0.1 m/s as inputs; what a driven
+    body costs beside a free one of the same shape."""
+    scene = tumbling_scene(n)
+    scene["name"] = f"Driven{n}"
+    for b in scene["bodies"]:
+        for key in ("mass", "inertia", "inputs"):
+            b.pop(key, None)
+        b.update(motion="driven", velocity=[0.1, 0.0, 0.0], outputs=[])
+    return scene
+
+
 def pile_layout(n, layers=None, tilt=TILT):
     """Columns on a square grid, layers upwards: (x, y, z) of each cube's centre and a
     small tilt (rad, about x and y; frequencies `tilt`) so that cubes land on edges and
@@ -112,6 +125,7 @@ def write(directory, tilt=TILT):
     (d / f"pile_wide_{WIDE_PILE}.json").write_text(json.dumps(pile_wide_scene(WIDE_PILE, tilt)))
     for n in TUMBLING_COUNTS:
         (d / f"tumbling_{n}.json").write_text(json.dumps(tumbling_scene(n)))
+        (d / f"driven_{n}.json").write_text(json.dumps(driven_scene(n)))
 
 
 def main(argv):

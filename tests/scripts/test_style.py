@@ -15,8 +15,9 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 # Where the C and C++ live: the core, the FMI adapters, the model description, the
-# benchmarks and the tests (C++ units, the win64 importer).
-CXX_FOLDERS = ["src", "fmu", "modelDescription", "bench", "tests"]
+# benchmarks, the tests (C++ units, the win64 importer) and the example systems' C FMUs
+# (scripts/systems).
+CXX_FOLDERS = ["src", "fmu", "modelDescription", "bench", "tests", "scripts"]
 
 
 def cxx_files(folders=CXX_FOLDERS):

@@ -331,6 +331,7 @@ StepResult auditRotationalEnergy(const WorldModel& model, WorldData& data, const
   if (model.energyGainLimit > 0.0) {
     forEachAwake(data, [&](int i) {
       if (!r.ok || data.Y[i].L != before[i].L || !(a.reference[i] > 0.0)) return;
+      if (driven(model.bodies[i])) return;  // its turning is given, not integrated
       const double gain = a.carried[i] * data.aux[i].omega.dot(data.Y[i].L) / a.reference[i] - 1.0;
       if (!(gain > model.energyGainLimit)) return;
       r = failed(i);

@@ -205,3 +205,26 @@ def test_fmu_states_and_reset_carry_the_driven_inputs(slave):
     s.initialize()
     assert s.get("pusher.position[1]") == -0.3
     assert run(0, 60) == first
+
+
+def test_a_turntable_spun_up_by_its_inputs_carries_a_box_and_is_never_refused(slave):
+    # angular acceleration alpha as the angular velocity's input derivative: the energy
+    # audit, which refuses rotational energy that a torque-free body gains, must leave
+    # a driven body's given turning alone
+    alpha, omega0, r = 2.0, 0.5, 0.3
+    scene = platform_scene(angularVelocity=[0, 0, omega0])
+    scene["name"] = "SpinUp"
+    scene["bodies"][0].update(position=[r, 0, 0.1], velocity=[0, omega0 * r, 0], angularVelocity=[0, 0, omega0],
+                              staticFriction=1.0, kineticFriction=0.8)
+    s = slave(scene)
+    vr = s.vr(["platform.angularVelocity[3]"])
+    for k in range(100):
+        t = k * H
+        half = 0.5 * (omega0 * t + 0.5 * alpha * t * t)
+        s.set_values({"platform.orientation[1]": math.cos(half), "platform.orientation[4]": math.sin(half),
+                      "platform.angularVelocity[3]": omega0 + alpha * t})
+        s.slave.setRealInputDerivatives(vr, [1], [alpha])
+        s.step(H, t)
+    x, y = s.get("load.position[1]", "load.position[2]")
+    assert math.atan2(y, x) == pytest.approx(omega0 + 0.5 * alpha, abs=1e-3)
+    assert math.hypot(x, y) == pytest.approx(r, abs=1e-4)

@@ -239,6 +239,16 @@ Motion readMotion(const Object& o) {
   return Motion::Driven;
 }
 
+// A body's start orientation and velocities, and its contact materials.
+void readStartAndMaterial(const Object& o, BodyConstants& b) {
+  b.start.orientation = unitQuaternion(o, "orientation");
+  b.start.velocity = o.vec3("velocity", Vec3::Zero());
+  b.start.angularVelocity = o.vec3("angularVelocity", Vec3::Zero());
+  b.restitution = inRange(o, "restitution", defaults::kRestitution, 0.0, 1.0);
+  friction(o, b.staticFriction, b.kineticFriction);
+  b.rollingResistance = rollingResistance(o);
+}
+
 BodyConstants readBody(const json& j, const std::string& path) {
   Object o(j, path,
            {"name", "shape", "motion", "mass", "inertia", "position", "orientation", "velocity", "angularVelocity",
@@ -255,12 +265,7 @@ BodyConstants readBody(const json& j, const std::string& path) {
     if (o.has("inertia")) setInertia(b, readInertia(o.at("inertia"), o.path("inertia")));
   }
   b.start.position = o.vec3("position", Vec3::Zero());
-  b.start.orientation = unitQuaternion(o, "orientation");
-  b.start.velocity = o.vec3("velocity", Vec3::Zero());
-  b.start.angularVelocity = o.vec3("angularVelocity", Vec3::Zero());
-  b.restitution = inRange(o, "restitution", defaults::kRestitution, 0.0, 1.0);
-  friction(o, b.staticFriction, b.kineticFriction);
-  b.rollingResistance = rollingResistance(o);
+  readStartAndMaterial(o, b);
   b.collides = o.boolean("collision", true);
   b.loads = readLoads(o);
   return b;
@@ -312,12 +317,7 @@ BodyConstants readMovingSurface(const json& j, const std::string& path) {
   readMotion(o);
   makeDriven(b);
   b.start.position = 0.5 * (min + max);
-  b.start.orientation = unitQuaternion(o, "orientation");
-  b.start.velocity = o.vec3("velocity", Vec3::Zero());
-  b.start.angularVelocity = o.vec3("angularVelocity", Vec3::Zero());
-  b.restitution = inRange(o, "restitution", defaults::kRestitution, 0.0, 1.0);
-  friction(o, b.staticFriction, b.kineticFriction);
-  b.rollingResistance = rollingResistance(o);
+  readStartAndMaterial(o, b);
   return b;
 }
 

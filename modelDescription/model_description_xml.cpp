@@ -12,7 +12,7 @@ namespace rigidfmu {
 
 const LogCategory kLogCategories[] = {
     {"logStatusWarning", "warnings"},
-    {"logStatusDiscard", "steps that could not be completed (fmi2Discard)"},
+    {"logStatusDiscard", "steps that could not be completed (a Discard status)"},
     {"logStatusError", "errors: bad arguments, calls out of order, bad scenes"},
     {"logEvents", "instantiation, initialisation, resets and parameter changes"},
     {"logCalls", "every FMI call (verbose)"},

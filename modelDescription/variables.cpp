@@ -159,7 +159,7 @@ std::vector<Variable> modelVariables(const Scene& scene) {
   add({0, "solver.energyGainLimit", Quantity::SolverEnergyGainLimit, -1, 0, Causality::Parameter, Variability::Tunable,
        Initial::Exact, BaseType::Real, "1",
        "largest relative gain of a torque-free body's rotational energy over the run; a step "
-       "beyond it is refused (fmi2Discard); 0: unchecked"});
+       "beyond it is refused (the step is discarded); 0: unchecked"});
   add({0, "solver.steps", Quantity::SolverSteps, -1, 0, Causality::Output, Variability::Discrete, Initial::Calculated,
        BaseType::Integer, "", "internal steps taken in the last communication step (sub-steps included)"});
   add({0, "solver.errorEstimate", Quantity::SolverErrorEstimate, -1, 0, Causality::Output, Variability::Discrete,

@@ -83,6 +83,8 @@ def test_the_fmi3_fmu_is_valid_and_carries_both_platforms(scene, fmu_of):
     ident = md.coSimulation.modelIdentifier
     assert f"binaries/x86_64-linux/{ident}.so" in names
     assert f"binaries/x86_64-windows/{ident}.dll" in names
+    # it speaks FMI 3 throughout: no FMI 2 name in its description
+    assert "fmi2" not in zipfile.ZipFile(fmu).read("modelDescription.xml").decode()
 
 
 @pytest.mark.parametrize("scene", EXAMPLES)

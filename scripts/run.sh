@@ -10,7 +10,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 scene="${1:-$root/scripts/scenes/default.json}"
 stop_time="${2:-5}"
-"$root/scripts/setup.sh"
+[ -n "${RIGIDFMU_SKIP_SETUP:-}" ] || "$root/scripts/setup.sh"
 out="${RIGIDFMU_OUT:-$root/out}"
 "$root/.venv/bin/python" -m rigidfmu simulate "$scene" --stop-time "$stop_time" --out "$out" --plot --replay \
   --no-win64

@@ -1,7 +1,10 @@
 """The run's outputs for people: `rigidfmu simulate --plot`'s figures, and the 3D
 replay page that replay.sh writes, self-contained, and that headless chromium opens with no error,
-shows every body in its palette colour and moves the bodies with the time slider."""
+shows every body in its palette colour and moves the bodies with the time slider. A run
+of scripts/scenes/pusher.json keeps its driven pusher and driven surface lift: their
+poses in the CSV, out of the energy, in the replay as bodies of their own colour."""
 import colorsys
+import csv
 import json
 import os
 import pathlib
@@ -14,7 +17,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from rigidfmu.replay import colour_of
+from rigidfmu.plots import energy_note
+from rigidfmu.replay import DRIVEN_COLOUR, colour_of, read_result, write_replay
 from rigidfmu.scenes import body, scene
 
 pytestmark = pytest.mark.slow  # a whole script or browser run (pyproject.toml)
@@ -23,6 +27,8 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 ENV = dict(os.environ, RIGIDFMU_SKIP_SETUP="1")
 CHROMIUM = os.environ.get("CHROMIUM", "/usr/bin/chromium")
 STOP_TIME = 1.0
+PUSHER = ROOT / "scripts" / "scenes" / "pusher.json"
+PUSHER_STOP_TIME = 0.2
 
 
 def colours_scene():
@@ -75,8 +81,7 @@ def test_replay_sh_writes_one_self_contained_page(run):
     assert not re.search(r"<(script|link|img|iframe)\b[^>]*\b(src|href)\s*=", html, re.I)
     assert not re.search(r"""(src|href)\s*=\s*["']?https?://""", html, re.I)
     assert not re.search(r"\bimport\s*\(|\bfrom\s*['\"]https?:", html)
-    data = json.loads(re.search(r'<script id="replay-data" type="application/json">(.*?)</script>',
-                                html, re.S).group(1))
+    data = replay_data(html)
     assert [b["name"] for b in data["bodies"]] == ["ball", "brick", "rod"]
     assert [b["colour"] for b in data["bodies"]] == [colour_of(k) for k in range(3)]
     frames = len(data["time"])
@@ -88,28 +93,42 @@ def test_replay_sh_writes_one_self_contained_page(run):
     assert [m["name"] for m in data["media"]] == ["pool"]
 
 
-def body_pixels(png, colour):
+def replay_data(html):
+    """The run embedded in a replay page (rigidfmu.replay's JSON)."""
+    return json.loads(re.search(r'<script id="replay-data" type="application/json">(.*?)</script>',
+                                html, re.S).group(1))
+
+
+def body_pixels(png, colour, saturation=0.45):
     """(count, centroid x, centroid y) of the pixels whose hue is the colour's, within
     12 degrees, and that are saturated and bright enough to be the body and not the
-    grey floor or the pale water: shading changes a lit body's brightness, not its hue."""
+    grey floor or the pale water: shading changes a lit body's brightness, not its hue.
+    The driven bodies' slate is less saturated than the palette: a lower `saturation`."""
     hsv = np.asarray(Image.open(png).convert("RGB").convert("HSV"), dtype=float)
     r, g, b = (int(colour[i:i + 2], 16) / 255 for i in (1, 3, 5))
     hue = colorsys.rgb_to_hsv(r, g, b)[0] * 255
     dh = np.abs(hsv[..., 0] - hue)
     match = ((np.minimum(dh, 255 - dh) <= 12 / 360 * 255)
-             & (hsv[..., 1] >= 0.45 * 255) & (hsv[..., 2] >= 0.2 * 255))
+             & (hsv[..., 1] >= saturation * 255) & (hsv[..., 2] >= 0.2 * 255))
     ys, xs = np.nonzero(match)
     return len(xs), (xs.mean() if len(xs) else np.nan), (ys.mean() if len(ys) else np.nan)
 
 
-@pytest.mark.skipif(not (os.access(CHROMIUM, os.X_OK) and shutil.which("node")),
-                    reason=f"no {CHROMIUM} or node (scripts/setup.sh installs Debian's chromium)")
-def test_page_shows_the_bodies_and_the_slider_moves_them(run):
-    shots = run["dir"] / "shots"
+def snapshots(html, shots):
+    """The page's screenshots at the first and the last frame (snapshot.mjs's report)."""
     snapshot = ROOT / "python" / "rigidfmu" / "replay" / "page" / "snapshot.mjs"
-    printed = subprocess.run(["node", str(snapshot), str(run["html"]), str(shots), "0", "last"],
+    printed = subprocess.run(["node", str(snapshot), str(html), str(shots), "0", "last"],
                              check=True, capture_output=True, text=True, timeout=120).stdout
-    report = json.loads(printed.strip().splitlines()[-1])
+    return json.loads(printed.strip().splitlines()[-1])
+
+
+BROWSER = pytest.mark.skipif(not (os.access(CHROMIUM, os.X_OK) and shutil.which("node")),
+                             reason=f"no {CHROMIUM} or node (scripts/setup.sh installs Debian's chromium)")
+
+
+@BROWSER
+def test_page_shows_the_bodies_and_the_slider_moves_them(run):
+    report = snapshots(run["html"], run["dir"] / "shots")
     assert report["errors"] == []
     first, last = (pathlib.Path(p) for p in report["screenshots"])
     assert report["frames"] == [0, round(STOP_TIME / 0.02)]
@@ -119,3 +138,81 @@ def test_page_shows_the_bodies_and_the_slider_moves_them(run):
         assert n0 >= 40 and n1 >= 40, f"{b['name']} ({colour_of(k)}): {n0} and {n1} pixels"
         moved = np.hypot(x1 - x0, y1 - y0)
         assert moved > 5, f"{b['name']} moved {moved:.1f} px on the screen"
+
+
+# ---- driven bodies: scripts/scenes/pusher.json ------------------------------------------
+
+DRIVEN = ("pusher", "lift")  # a driven body and a driven surface
+
+
+@pytest.fixture(scope="module")
+def pusher_run(tmp_path_factory):
+    """`rigidfmu simulate scripts/scenes/pusher.json --plot --replay`, with no master:
+    the driven inputs keep their start values."""
+    out = tmp_path_factory.mktemp("pusher")
+    printed = subprocess.run([sys.executable, "-m", "rigidfmu", "simulate", str(PUSHER), "--plot", "--replay",
+                              "--no-win64", "--stop-time", str(PUSHER_STOP_TIME), "--out", str(out)],
+                             check=True, capture_output=True, text=True, env=ENV).stdout
+    return {"dir": out, "csv": out / "pusher.csv", "html": out / "pusher.html", "printed": printed}
+
+
+def pose_columns(name):
+    return [f"{name}.{field}[{i}]" for field, n in (("position", 3), ("orientation", 4)) for i in range(1, n + 1)]
+
+
+def test_the_csv_holds_the_driven_poses_at_their_start_values(pusher_run):
+    result = read_result(pusher_run["csv"])
+    assert all(c in result for name in DRIVEN for c in pose_columns(name))
+    # the pusher where the scene puts it; the lift centred between its min and max
+    for name, start in (("pusher", [-0.3, 0, 0.1, 1, 0, 0, 0]), ("lift", [1.5, 0, 0.45, 1, 0, 0, 0])):
+        track = np.column_stack([result[c] for c in pose_columns(name)])
+        assert np.allclose(track, start, rtol=0, atol=1e-12), name
+    assert "crate.position[1]" in result and "pusher.contacts" in result  # the outputs as before
+
+
+def test_the_plots_are_written_and_the_energy_leaves_the_driven_out(pusher_run):
+    for kind in ("position", "velocity", "energy", "contacts"):
+        png = pusher_run["dir"] / f"pusher_{kind}.png"
+        assert str(png) in pusher_run["printed"].splitlines()
+        with Image.open(png) as image:
+            assert image.width >= 600 and image.height >= 150
+    assert "driven, not counted (no mass, motion given): pusher, lift" in energy_note([], list(DRIVEN))
+
+
+def test_the_replay_draws_the_driven_bodies_with_their_tracks(pusher_run):
+    data = replay_data(pusher_run["html"].read_text())
+    frames = len(data["time"])
+    assert frames == round(PUSHER_STOP_TIME / 0.01) + 1
+    bodies = {b["name"]: b for b in data["bodies"]}
+    assert list(bodies) == ["crate", "ball", *DRIVEN]
+    assert [s["name"] for s in data["surfaces"]] == ["floor"]  # the lift is a body now
+    assert [bodies[n]["colour"] for n in ("crate", "ball")] == [colour_of(0), colour_of(1)]
+    for name in DRIVEN:
+        b = bodies[name]
+        assert b["motion"] == "driven" and b["colour"] == DRIVEN_COLOUR, name
+        assert len(b["position"]) == 3 * frames and len(b["orientation"]) == 4 * frames, name
+        assert len(b["contacts"]) == frames, name
+    assert bodies["lift"]["shape"] == {"type": "box", "size": [0.6, 0.6, 0.1]}
+    assert bodies["lift"]["position"][-3:] == [1.5, 0.0, 0.45]
+    assert bodies["ball"]["contacts"][-1] == 1  # resting on the lift
+
+
+@BROWSER
+def test_page_moves_the_driven_bodies_with_their_recorded_pose(pusher_run, tmp_path):
+    """The run's CSV with both driven bodies carried 2 m along y over the run, as a
+    master would move them: the page draws them in DRIVEN_COLOUR, and where they are."""
+    with open(pusher_run["csv"], newline="") as f:
+        rows = list(csv.reader(f))
+    columns = [rows[0].index(f"{name}.position[2]") for name in DRIVEN]
+    for row in rows[1:]:
+        for c in columns:
+            row[c] = str(2.0 * float(row[0]) / PUSHER_STOP_TIME)
+    moved = tmp_path / "moved.csv"
+    with open(moved, "w", newline="") as f:
+        csv.writer(f).writerows(rows)
+    report = snapshots(write_replay(moved, json.loads(PUSHER.read_text()), tmp_path / "moved.html"),
+                       tmp_path / "shots")
+    assert report["errors"] == []
+    (n0, x0, y0), (n1, x1, y1) = (body_pixels(p, DRIVEN_COLOUR, saturation=0.15) for p in report["screenshots"])
+    assert n0 >= 40 and n1 >= 40, f"driven bodies: {n0} and {n1} pixels"
+    assert np.hypot(x1 - x0, y1 - y0) > 5

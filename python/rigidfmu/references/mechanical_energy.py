@@ -15,6 +15,8 @@ volume: exact for a body wholly inside, within a cell's thickness at the waterli
 """
 import numpy as np
 
+from rigidfmu.driven import is_driven
+
 FLUID_DENSITY = {"water": 998.2, "air": 1.204}  # kg/m3, the FMU's defaults (README, Scenes)
 GRID = 16
 
@@ -102,13 +104,16 @@ def energies(result, scene, masses, g):
     """(kinetic, gravity potential, buoyancy potential, left_out): the first three summed
     over the bodies, J, each (T,): kinetic 1/2 (m v.v + omega.L), gravity's -m g.x,
     buoyancy's U_b. left_out names the bodies that do not output all of NEEDED (scene
-    "outputs"): they are in none of the sums, and the plot says so."""
+    "outputs"): they are in none of the sums, and the plot says so. Driven bodies
+    (no mass, their motion given) are in none of the sums either, nor in left_out."""
     t = len(result["time"])
     kinetic, gravity, buoyancy = np.zeros(t), np.zeros(t), np.zeros(t)
     names = set(result.dtype.names if hasattr(result, "dtype") else result)
     media = scene.get("media", [])
     left_out = []
     for body in scene["bodies"]:
+        if is_driven(body):
+            continue
         b, m = body["name"], masses[body["name"]]
         if any(f"{b}.{f}[1]" not in names for f in NEEDED):
             left_out.append(b)

@@ -6,16 +6,22 @@ network) from a result CSV (as rigidfmu.simulate writes it) and the scene JSON.
 The run is embedded in the page as JSON:
     {"title": str, "up": [x, y, z] (unit, against gravity; z without gravity),
      "time": [s, ...],
-     "bodies": [{"name", "shape" (as in the scene), "colour": "#rrggbb",
+     "bodies": [{"name", "shape" (as in the scene), "motion": "free" or "driven",
+                 "colour": "#rrggbb",
                  "position": [x, y, z, ...] m, "orientation": [w, x, y, z, ...],
                  "contacts": [int, ...] or null}],
      "surfaces": [{"name", "min", "max", "orientation": [w, x, y, z]}],
      "media": [{"name", "type", "min", "max"}]}
-A body's position or orientation that the FMU does not output is its start value from
-the scene (one frame); its contacts are then null.
+"bodies" are the FMU's bodies in its order: the scene's bodies, then its driven
+surfaces, each as the driven body it is (rigidfmu.driven: a box of size max - min,
+its position the box's centre); "surfaces" are the static surfaces only. A body's
+position or orientation that the CSV does not hold (an output left out, or an older
+CSV without a driven body's pose inputs) is its start value from the scene (one
+frame); its contacts are null when the CSV does not hold b.contacts.
 
-Body k is drawn in PALETTE[k % len(PALETTE)] (scene order): colours are the replay's
-choice, not part of the scene format, and the browser test finds the bodies by them.
+Body k (scene order) is drawn in PALETTE[k % len(PALETTE)], a driven body or surface
+in DRIVEN_COLOUR: colours are the replay's choice, not part of the scene format, and
+the browser test finds the bodies by them.
 """
 import csv
 import json
@@ -24,6 +30,7 @@ import subprocess
 
 import numpy as np
 
+from rigidfmu import driven
 from rigidfmu.errors import ReplayError
 
 PAGE = pathlib.Path(__file__).resolve().parent / "page"  # its sources, npm packages and build
@@ -35,8 +42,18 @@ DATA_MARKER = "<!-- replay-data -->"
 PALETTE = ["#e53935", "#43a047", "#fb8c00", "#1e88e5", "#8e24aa", "#fdd835", "#00acc1", "#d81b60"]
 
 
+# Driven bodies are the world's machinery, moved by their inputs: slate, darker and
+# bluer than the still grey surfaces and far less saturated than any body's colour.
+DRIVEN_COLOUR = "#546e7a"
+
+
 def colour_of(index: int) -> str:
     return PALETTE[index % len(PALETTE)]
+
+
+def body_colour(body: dict, index: int) -> str:
+    """The colour of the body at `index` of rigidfmu.driven.all_bodies(scene)."""
+    return DRIVEN_COLOUR if driven.is_driven(body) else colour_of(index)
 
 
 def ensure_template() -> pathlib.Path:
@@ -71,7 +88,8 @@ def flat(result: dict, columns: list, decimals: int):
 
 def body_track(result: dict, body: dict, index: int) -> dict:
     name = body["name"]
-    track = {"name": name, "shape": body["shape"], "colour": colour_of(index)}
+    track = {"name": name, "shape": body["shape"], "motion": body.get("motion", "free"),
+             "colour": body_colour(body, index)}
     for field, n, start in (("position", 3, [0.0, 0.0, 0.0]), ("orientation", 4, [1.0, 0.0, 0.0, 0.0])):
         columns = [f"{name}.{field}[{i}]" for i in range(1, n + 1)]
         if all(c in result for c in columns):
@@ -94,10 +112,10 @@ def run_data(result: dict, scene: dict, title: str) -> dict:
         "title": title,
         "up": up_of(scene),
         "time": np.round(result["time"], 9).tolist(),
-        "bodies": [body_track(result, b, k) for k, b in enumerate(scene["bodies"])],
+        "bodies": [body_track(result, b, k) for k, b in enumerate(driven.all_bodies(scene))],
         "surfaces": [{"name": s["name"], "min": s["min"], "max": s["max"],
-                      "orientation": s.get("orientation", [1.0, 0.0, 0.0, 0.0])}
-                     for s in scene.get("surfaces", [])],
+                      "orientation": s.get("orientation", driven.IDENTITY)}
+                     for s in driven.static_surfaces(scene)],
         "media": [{"name": m["name"], "type": m.get("type", "water"), "min": m["min"], "max": m["max"]}
                   for m in scene.get("media", [])],
     }

@@ -105,7 +105,7 @@ export function boundingRadius(shape) {
 }
 
 // Frame i of a body: position and quaternion (w, x, y, z, as in the CSV) to the group.
-// A body whose pose is not an output of the FMU holds a single frame, its start pose.
+// A body whose pose the CSV does not hold has a single frame, its start pose.
 export function setPose(group, body, i) {
   const p = body.position.length > 3 ? 3 * i : 0;
   const q = body.orientation.length > 4 ? 4 * i : 0;

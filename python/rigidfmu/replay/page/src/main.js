@@ -17,7 +17,9 @@ function legend(run) {
     swatch.className = 'swatch';
     swatch.style.background = body.colour;
     const name = document.createElement('span');
-    name.textContent = `${body.name} (${body.shape.type})`;
+    // a driven body (a pusher, a moving surface) is moved by its inputs, not by the world
+    const kind = body.motion === 'driven' ? `${body.shape.type}, driven` : body.shape.type;
+    name.textContent = `${body.name} (${kind})`;
     const contacts = document.createElement('span');
     contacts.className = 'contacts';
     row.append(swatch, name, contacts);

@@ -1,6 +1,7 @@
-// The still parts of the scene: surfaces (boxes given by min and max, turned about their
-// centre by their orientation, src/surface.cpp), media (axis-aligned boxes, drawn
-// see-through), a ground grid under everything, and the lights.
+// The still parts of the scene: static surfaces (boxes given by min and max, turned
+// about their centre by their orientation, src/surface.cpp; a driven surface comes as
+// a body, bodies.js), media (axis-aligned boxes, drawn see-through), a ground grid
+// under everything, and the lights.
 import * as THREE from 'three';
 
 const SURFACE_COLOUR = 0x9a9a9a;

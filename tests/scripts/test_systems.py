@@ -129,6 +129,9 @@ def test_the_controller_refuses_bad_values_by_name(built):
         with pytest.raises(FMICallException):
             slave.set_values({"position": float("nan")})
         assert "position must be finite" in slave.log.last()[2]
+        with pytest.raises(FMICallException):
+            slave.set_values({"Kd": -1.0})
+        assert "Kd must be >= 0" in slave.log.last()[2]
         slave.initialize({"Kp": 10.0, "target": 1.0})
         with pytest.raises(FMICallException):
             slave.set_values({"Kp": 20.0})

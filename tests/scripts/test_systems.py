@@ -4,11 +4,13 @@ masters' recordings are equal to the bit; `scripts/system.sh` says so and exits 
 exits 1 when the outcome fails. The lift's controller is a valid FMU that refuses bad
 values by name."""
 import json
+import math
 import os
 import pathlib
 import shutil
 import subprocess
 
+import numpy as np
 import pytest
 from fmpy.fmi1 import FMICallException
 from fmpy.validation import validate_fmu
@@ -98,6 +100,20 @@ def test_a_failed_outcome_exits_1(tmp_path, capsys):
     assert command.main([str(folder), "--master", "fmpy", "--out", str(tmp_path / "out")]) == 1
     out = capsys.readouterr().out
     assert "FAILS: the platform at the target height" in out and "the outcome does NOT hold" in out
+
+
+def test_a_check_in_a_frame_reads_the_vector_in_the_moving_frame():
+    """A frame at (1, 2, 3) turned by a quarter turn about z: the point (1, 3, 3) is 1 m
+    along its x axis; a frame's value must name a vector's element."""
+    system = ssd.System(pathlib.Path("system.ssd"), "frame", {}, [], step_ns=1_000_000)
+    values = {"w.p.position[1]": 1.0, "w.p.position[2]": 3.0, "w.p.position[3]": 3.0, "c.f.position[1]": 1.0,
+              "c.f.position[2]": 2.0, "c.f.position[3]": 3.0, "c.f.orientation[1]": math.sqrt(0.5),
+              "c.f.orientation[2]": 0.0, "c.f.orientation[3]": 0.0, "c.f.orientation[4]": math.sqrt(0.5)}
+    run = masters.Run("fmpy", system, list(values), np.array([0.001]), np.array([list(values.values())]), 0.0)
+    along = [outcome.Check("x", f"w.p.position[{i}]", 0.0, 1e-12, frame="c.f") for i in (1, 2, 3)]
+    assert [outcome.evaluate(c, run, system).last for c in along] == pytest.approx([1.0, 0.0, 0.0], abs=1e-15)
+    with pytest.raises(ValueError, match="a vector's element NAME"):
+        outcome.Check("x", "w.p.speed", 0.0, 1.0, frame="c.f").variables()
 
 
 def test_a_misspelt_parameter_is_refused_before_the_run(built):

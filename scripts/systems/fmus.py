@@ -3,10 +3,11 @@ sources name them relative to itself), so that a master can load the SSD from th
 
 A component whose source is X.fmu is built from the system folder's
 - X.json, a scene: `scripts/build_fmu.sh X.json X.fmu --no-win64` (rigidfmu build), or
-- X/, a C FMU: its modelDescription.xml and its *.c, compiled with the C compiler
-  against the FMI 2.0 headers of the installed fmpy package (as CMakeLists.txt finds
-  them, never a copy), the XML's GUID passed as MODEL_GUID; the FMU carries its
-  sources."""
+- X/, a C FMU: its modelDescription.xml and its *.c (the model of a sampled controller),
+  compiled with the C compiler together with sampled_fmu/ (the FMI functions that every
+  controller shares) against the FMI 2.0 headers of the installed fmpy package (as
+  CMakeLists.txt finds them, never a copy), the XML's GUID passed as MODEL_GUID; the
+  FMU carries its sources."""
 import os
 import pathlib
 import shutil
@@ -18,6 +19,7 @@ import zipfile
 from systems import ssd
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+SAMPLED_FMU = pathlib.Path(__file__).resolve().parent / "sampled_fmu"  # the controllers' FMI functions
 
 
 class BuildError(RuntimeError):
@@ -43,10 +45,12 @@ def build_scene(scene: pathlib.Path, out: pathlib.Path) -> None:
 
 
 def build_c(folder: pathlib.Path, out: pathlib.Path) -> None:
-    """A C FMU from `folder`: modelDescription.xml and the *.c beside it."""
+    """A C FMU from `folder`: modelDescription.xml and the *.c beside it, with the
+    FMI functions of sampled_fmu/."""
     description = folder / "modelDescription.xml"
-    sources = sorted(folder.glob("*.c"))
-    if not description.is_file() or not sources:
+    own = sorted(folder.glob("*.c"))
+    sources = own + sorted(SAMPLED_FMU.glob("*.c"))
+    if not description.is_file() or not own:
         raise BuildError(f"{folder}: needs modelDescription.xml and at least one .c file")
     root = ET.parse(description).getroot()
     guid, cs = root.get("guid"), root.find("CoSimulation")
@@ -56,7 +60,8 @@ def build_c(folder: pathlib.Path, out: pathlib.Path) -> None:
     with tempfile.TemporaryDirectory(prefix="rigidfmu-system-") as stage:
         library = pathlib.Path(stage) / f"{identifier}.so"
         compile_ = ["cc", "-std=c99", "-O2", "-fPIC", "-shared", "-Wall", "-Wextra", "-Werror",
-                    f"-I{fmi_headers()}", f'-DMODEL_GUID="{guid}"', *map(str, sources), "-o", str(library), "-lm"]
+                    f"-I{fmi_headers()}", f"-I{SAMPLED_FMU}", f'-DMODEL_GUID="{guid}"', *map(str, sources),
+                    "-o", str(library), "-lm"]
         run = subprocess.run(compile_, capture_output=True, text=True)
         if run.returncode != 0:
             raise BuildError(f"compiling {folder.name}: {run.stderr.strip()}")
@@ -64,7 +69,7 @@ def build_c(folder: pathlib.Path, out: pathlib.Path) -> None:
         with zipfile.ZipFile(partial, "w", zipfile.ZIP_DEFLATED) as z:
             z.write(description, "modelDescription.xml")
             z.write(library, f"binaries/linux64/{identifier}.so")
-            for source in sources:
+            for source in sources + sorted(SAMPLED_FMU.glob("*.h")):
                 z.write(source, f"sources/{source.name}")
         partial.replace(out)
 

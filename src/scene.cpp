@@ -277,7 +277,7 @@ std::set<std::string> nameList(const Object& o, const char* key, const std::vect
 Surface readSurface(const json& j, const std::string& path) {
   Object o(j, path,
            {"name", "min", "max", "orientation", "staticFriction", "kineticFriction", "restitution",
-            "rollingResistance", "outputs"});
+            "rollingResistance", "outputs", "beltVelocity"});
   Surface s;
   s.name = identifier(o, "name");
   readBox(o, s.min, s.max);
@@ -286,6 +286,8 @@ Surface readSurface(const json& j, const std::string& path) {
   s.restitution = inRange(o, "restitution", defaults::kRestitution, 0.0, 1.0);
   s.rollingResistance = rollingResistance(o);
   s.forceOutput = nameList(o, "outputs", {"force"}).count("force") > 0;
+  s.belt = o.has("beltVelocity");  // a conveyor: its belt's velocity becomes an input
+  s.beltVelocity = o.vec3("beltVelocity", Vec3::Zero());
   finishSurface(s);
   return s;
 }

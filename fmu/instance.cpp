@@ -370,14 +370,18 @@ Instance::Interval Instance::advance(double h, bool reportSubsteps, bool stopAtI
   // midpoint, which gives a ramp's impulse exactly. Afterwards the inputs are again
   // the values the master set, and the derivatives are spent.
   const std::vector<rigid::BodyInput> setInputs = data_.input;
+  const std::vector<rigid::Vec3> setBelts = data_.beltVelocity;
   struct Restore {
     rigid::WorldData& d;
     const std::vector<rigid::BodyInput>& inputs;
+    const std::vector<rigid::Vec3>& belts;
     ~Restore() {
       d.input = inputs;
       for (rigid::BodyInput& rate : d.inputRate) rate = rigid::zeroInput(rate.loads.size());
+      d.beltVelocity = belts;
+      d.beltRate.assign(belts.size(), rigid::Vec3::Zero());
     }
-  } restore{data_, setInputs};
+  } restore{data_, setInputs, setBelts};
   // Driven bodies move from where they are to where their inputs take them (drive.h).
   const std::vector<rigid::DrivePath> paths = drivePaths(h, reportSubsteps);
   struct SpendRates {
@@ -397,6 +401,7 @@ Instance::Interval Instance::advance(double h, bool reportSubsteps, bool stopAtI
       for (size_t k = 0; k < data_.input[b].loads.size(); ++k)
         data_.input[b].loads[k] = setInputs[b].loads[k] + mid * data_.inputRate[b].loads[k];
     }
+    for (size_t s = 0; s < setBelts.size(); ++s) data_.beltVelocity[s] = setBelts[s] + mid * data_.beltRate[s];
     const rigid::StepResult r = rigid::step(model_, data_, to - from, stopAtImpact);
     if (!r.ok) return {r, from, to};
     if (reportSubsteps) noteSubsteps(r, to - from);
@@ -574,6 +579,10 @@ Status Instance::setInputDerivatives(const uint32_t vr[], size_t n, const int32_
       return error(v->name + ": only first-order derivatives (order 1) are interpolated, got order " +
                    std::to_string(order[i]));
     if (!std::isfinite(value[i])) return error(v->name + ": must be finite, got " + num(value[i]));
+    if (v->quantity == Quantity::BeltVelocity) {  // the belt's acceleration over the step
+      data_.beltRate[v->body][v->component] = value[i];
+      continue;
+    }
     // A driven body's motion over the step follows its velocities and their rates;
     // its pose's derivatives are those velocities, taken from their own inputs.
     rigid::DriveInput& drive = data_.drive[v->body];

@@ -172,8 +172,8 @@ void visitRun(Archive& a, State& s) {
   a(s.model.maxStep), a(s.model.tolerance), a(s.model.energyGainLimit);
 }
 
-// The parameters and start values of bodies, surfaces and media; the rest of the model
-// is the scene's, which the GUID names.
+// The parameters and start values of bodies, surfaces (a conveyor's belt velocity
+// too) and media; the rest of the model is the scene's, which the GUID names.
 template <class Archive, class Model>
 void visitParameters(Archive& a, Model& m) {
   for (auto& b : m.bodies) {
@@ -182,6 +182,8 @@ void visitParameters(Archive& a, Model& m) {
   }
   for (auto& f : m.surfaces) a(f.staticFriction), a(f.kineticFriction), a(f.restitution);
   for (auto& f : m.media) a(f.density), a(f.viscosity);
+  for (auto& f : m.surfaces)
+    if (f.belt) a(f.beltVelocity);
 }
 
 // Body i's state Y, inputs and their rates (with those of its load points, as many as
@@ -223,6 +225,9 @@ void visitState(Archive& a, State& s) {
   for (size_t i = 0; i < d.Y.size(); ++i) visitBody(a, d, i);
   for (auto& J : d.contactLoads.surfaceImpulse) a(J);
   a(d.contactLoads.duration);
+  // the conveyors' belt inputs and their rates (other surfaces have none: zero)
+  for (size_t k = 0; k < s.model.surfaces.size(); ++k)
+    if (s.model.surfaces[k].belt) a(d.beltVelocity[k]), a(d.beltRate[k]);
   // lists that a corrupt count would make huge: at most 64 elements a body
   const size_t most = 64 * d.Y.size();
   a.list(d.sleep.resting, most, "the serialized state is corrupt (resting forces)",
@@ -273,13 +278,13 @@ static_assert(fieldCount<rigid::BodyConstants>() == 16,
 static_assert(fieldCount<rigid::BodyStart>() == 4,
               "a field was added to rigid::BodyStart: visit it in visitParameters (fmu/snapshot.cpp), then update "
               "this count");
-static_assert(fieldCount<rigid::Surface>() == 12,
+static_assert(fieldCount<rigid::Surface>() == 14,
               "a field was added to rigid::Surface: if a parameter sets it, visit it in visitParameters "
               "(fmu/snapshot.cpp); then update this count");
 static_assert(fieldCount<rigid::Medium>() == 6,
               "a field was added to rigid::Medium: if a parameter sets it, visit it in visitParameters "
               "(fmu/snapshot.cpp); then update this count");
-static_assert(fieldCount<rigid::WorldData>() == 16,
+static_assert(fieldCount<rigid::WorldData>() == 18,
               "a field was added to rigid::WorldData: unless it is derived or scratch, visit it in visitState "
               "(fmu/snapshot.cpp); then update this count");
 static_assert(fieldCount<rigid::BodyState>() == 4,

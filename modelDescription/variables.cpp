@@ -281,6 +281,18 @@ std::vector<Variable> modelVariables(const Scene& scene) {
       }
     }
   }
+  // The conveyors' belt velocities, last of all.
+  for (size_t s = 0; s < scene.model.surfaces.size(); ++s) {
+    const rigid::Surface& surface = scene.model.surfaces[s];
+    if (!surface.belt) continue;
+    for (int c = 0; c < 3; ++c)
+      add({0, surface.name + ".beltVelocity[" + std::to_string(c + 1) + "]", Quantity::BeltVelocity,
+           static_cast<int>(s), c, Causality::Input, Variability::Continuous, Initial::None, BaseType::Real, "m/s",
+           surface.name +
+               ": velocity of the surface's material (a conveyor's belt), world frame; only its part "
+               "along each contact's plane acts, " +
+               kAxis[c]});
+  }
   return vars;
 }
 
@@ -336,6 +348,7 @@ double readValue(const Variable& v, const WorldModel& model, const WorldData& da
     case Quantity::Force: return data.input[b].force[c];
     case Quantity::Torque: return data.input[b].torque[c];
     case Quantity::LoadForce: return data.input[b].loads[static_cast<size_t>(v.load)][c];
+    case Quantity::BeltVelocity: return setup ? model.surfaces[b].beltVelocity[c] : data.beltVelocity[b][c];
     case Quantity::Contacts: return setup ? 0.0 : static_cast<double>(data.contacts[b]);
     case Quantity::ContactForce:
     case Quantity::ContactTorque:
@@ -430,6 +443,9 @@ std::string writeValue(const Variable& v, double value, WorldModel& model, World
     case Quantity::Force: data.input[b].force[c] = value; return "";
     case Quantity::Torque: data.input[b].torque[c] = value; return "";
     case Quantity::LoadForce: data.input[b].loads[static_cast<size_t>(v.load)][c] = value; return "";
+    case Quantity::BeltVelocity:  // before the run, the start value (the run starts from the model's)
+      (phase == Phase::Setup ? model.surfaces[b].beltVelocity : data.beltVelocity[b])[c] = value;
+      return "";
     case Quantity::Contacts:
     case Quantity::ContactForce:
     case Quantity::ContactTorque:

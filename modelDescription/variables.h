@@ -17,7 +17,7 @@ enum class Initial { None, Exact, Calculated };
 enum class BaseType { Real, Integer, Enumeration };
 
 // A line per kind: world and solver; body, surface and medium parameters; body state;
-// inputs; contact outputs.
+// inputs; contact outputs; surface inputs.
 // clang-format off
 enum class Quantity {
   Time, Gravity, SolverMethod, SolverStep, SolverTolerance, SolverEnergyGainLimit, SolverSteps, SolverErrorEstimate,
@@ -26,6 +26,7 @@ enum class Quantity {
   Position, Orientation, Velocity, AngularVelocity, LinearMomentum, AngularMomentum,
   Force, Torque, LoadForce,
   Contacts, ContactForce, ContactTorque, SurfaceForce,
+  BeltVelocity,
 };
 // clang-format on
 

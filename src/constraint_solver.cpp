@@ -60,10 +60,13 @@ struct Jacobian {
   Vec3 linear = Vec3::Zero();
   Vec3 angularA = Vec3::Zero(), angularB = Vec3::Zero();
   Vec3 spinA = Vec3::Zero(), spinB = Vec3::Zero();  // I^-1 angular: the spin per unit impulse
+  // m/s, the velocity along it of B's material beyond B's own motion: a belt's, on a
+  // friction tangent (frictionJacobians); zero on every other row
+  double drift = 0.0;
 };
 
 Jacobian jacobian(const Body& A, const Body& B, const Vec3& linear, const Vec3& angularA, const Vec3& angularB) {
-  return {linear, angularA, angularB, A.invInertia * angularA, B.invInertia * angularB};
+  return {linear, angularA, angularB, A.invInertia * angularA, B.invInertia * angularB, 0.0};
 }
 
 // The coupling of two directions through the bodies' masses: J_x M^-1 J_y^T.
@@ -71,8 +74,10 @@ double coupling(const Body& A, const Body& B, const Jacobian& x, const Jacobian&
   return (A.invMass + B.invMass) * x.linear.dot(y.linear) + x.angularA.dot(y.spinA) + x.angularB.dot(y.spinB);
 }
 
+// The relative velocity of a row's two sides along it: B's material moves at B's motion
+// plus the row's drift (a belt's, Manifold::belt).
 double velocityAlong(const Body& A, const Body& B, const Jacobian& j) {
-  return j.linear.dot(B.v - A.v) + j.angularB.dot(B.w) - j.angularA.dot(A.w);
+  return j.linear.dot(B.v - A.v) + j.angularB.dot(B.w) - j.angularA.dot(A.w) + j.drift;
 }
 
 void applyImpulse(Body& A, Body& B, const Jacobian& j, double lambda) {
@@ -112,6 +117,11 @@ struct Manifold {
   Jacobian friction[3];                         // two tangents at the centre, and the twist about the normal
   Mat3 frictionMass = Mat3::Zero();             // (J M^-1 J^T)^-1 over the three
   double radius = 0.0;                          // m, the patch radius (Contact::patchRadius): the twist's lever
+  // m/s, the velocity of B's material beyond B's own motion, along the contact plane:
+  // a conveyor's belt (WorldData::beltVelocity), zero elsewhere. The friction tangents
+  // drift with it and slipOf counts it, so friction acts against the slip relative to
+  // the belt.
+  Vec3 belt = Vec3::Zero();
   Coefficients k;
   Softness soft;
   bool sliding = false;                              // friction bounded by mu_k (else mu_s) for the whole step
@@ -123,6 +133,13 @@ struct Manifold {
   Eigen::Matrix2d rollingMass = Eigen::Matrix2d::Zero();
   Eigen::Vector2d rollingLambda = Eigen::Vector2d::Zero();  // N m s
 };
+
+// The velocity of B's material relative to A's along the contact plane, at the points
+// rA and rB from their centres of mass (m/s): the slip that friction acts against.
+Vec3 slipOf(const Manifold& m, const Body& A, const Body& B, const Vec3& rA, const Vec3& rB) {
+  const Vec3 u = B.v + B.w.cross(rB) + m.belt - A.v - A.w.cross(rA);
+  return u - u.dot(m.normal) * m.normal;
+}
 
 }  // namespace
 
@@ -174,6 +191,8 @@ void prepareBody(const WorldModel& model, const WorldData& data, double hSub, in
 void frictionJacobians(Manifold& m, const Body& A, const Body& B) {
   m.friction[0] = jacobian(A, B, m.t1, m.rA.cross(m.t1), m.rB.cross(m.t1));
   m.friction[1] = jacobian(A, B, m.t2, m.rA.cross(m.t2), m.rB.cross(m.t2));
+  m.friction[0].drift = m.t1.dot(m.belt);
+  m.friction[1].drift = m.t2.dot(m.belt);
 }
 
 // The friction rows of a manifold at its centre: the first tangent along the slip, so
@@ -182,8 +201,7 @@ void prepareFriction(Manifold& m, const Solver& s) {
   const Body& A = s.bodies[m.a];
   const Body& B = s.bodies[m.b];
   const Vec3& n = m.normal;
-  const Vec3 u = B.v + B.w.cross(m.rB) - A.v - A.w.cross(m.rA);
-  const Vec3 slip = u - u.dot(n) * n;
+  const Vec3 slip = slipOf(m, A, B, m.rA, m.rB);
   m.t1 = slip.norm() > 1e-9 ? Vec3(slip.normalized()) : anyPerpendicular(n);
   m.t2 = n.cross(m.t1);
   frictionJacobians(m, A, B);
@@ -275,6 +293,10 @@ void prepareRows(const WorldModel& model, const WorldData& data, const std::vect
     if (m.count == 0) continue;
     prepareBody(model, data, hSub, m.a, s);
     if (c.b >= 0) prepareBody(model, data, hSub, c.b, s);
+    if (c.b < 0) {  // the surface's belt along the contact plane: its normal part does nothing
+      const Vec3& belt = data.beltVelocity[c.surface];
+      m.belt = belt - belt.dot(m.normal) * m.normal;
+    }
     const Body& A = s.bodies[m.a];
     const Body& B = s.bodies[m.b];
     for (size_t k = m.first; k < m.first + m.count; ++k) {
@@ -283,8 +305,7 @@ void prepareRows(const WorldModel& model, const WorldData& data, const std::vect
       p.mass = 1.0 / coupling(A, B, p.n, p.n);
     }
     prepareFriction(m, s);
-    const Vec3 u = B.v + B.w.cross(m.rB) - A.v - A.w.cross(m.rA);
-    m.sliding = (u - u.dot(m.normal) * m.normal).norm() > restingSpeed;  // a new pair; a kept one takes its memory's
+    m.sliding = slipOf(m, A, B, m.rA, m.rB).norm() > restingSpeed;  // a new pair; a kept one takes its memory's
     s.manifolds.push_back(m);
   }
 }
@@ -365,8 +386,7 @@ bool impact(const Manifold& m, const std::vector<Point>& points, double restingS
   const double j = -(1.0 + m.k.xi) * vn / coupling(A, B, n, n);
   applyImpulse(A, B, n, j);
   Vec3 push = j * m.normal;
-  const Vec3 u = B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
-  const Vec3 slip = u - u.dot(m.normal) * m.normal;
+  const Vec3 slip = slipOf(m, A, B, rA, rB);
   if (slip.norm() >= 1e-15) {
     const Vec3 d = -slip.normalized();
     const Jacobian t = jacobian(A, B, d, rA.cross(d), rB.cross(d));

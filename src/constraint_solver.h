@@ -11,7 +11,9 @@
 //   store        the impulses, for the next step's warm start (ContactMemory).
 // One row type per constraint: a point's normal (lambda_n >= 0), a pair's friction at
 // the centre of its patch (two tangents and a twist about the normal, bounded together
-// by mu lambda_N on an ellipsoid whose twist axis is scaled by the patch radius).
+// by mu lambda_N on an ellipsoid whose twist axis is scaled by the patch radius). On a
+// conveyor, the belt's velocity (WorldData::beltVelocity, its part along the contact
+// plane) is that of the surface's material: friction acts against the slip relative to it.
 // Bodies outside every island are left to the integrator.
 #pragma once
 

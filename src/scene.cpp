@@ -328,7 +328,7 @@ bool moving(const json& surface) {
 Surface readSurface(const json& j, const std::string& path) {
   Object o(j, path,
            {"name", "motion", "min", "max", "orientation", "staticFriction", "kineticFriction", "restitution",
-            "rollingResistance", "outputs"});
+            "rollingResistance", "outputs", "beltVelocity"});
   if (o.string("motion", "static") != "static")
     fail(o.path("motion"), "must be one of static, driven, got \"" + o.string("motion", "") + "\"");
   Surface s;
@@ -339,6 +339,8 @@ Surface readSurface(const json& j, const std::string& path) {
   s.restitution = inRange(o, "restitution", defaults::kRestitution, 0.0, 1.0);
   s.rollingResistance = rollingResistance(o);
   s.forceOutput = nameList(o, "outputs", {"force"}).count("force") > 0;
+  s.belt = o.has("beltVelocity");  // a conveyor: its belt's velocity becomes an input
+  s.beltVelocity = o.vec3("beltVelocity", Vec3::Zero());
   finishSurface(s);
   return s;
 }

@@ -26,6 +26,26 @@ void wakeIsland(SleepState& s, std::vector<ContactMemory>& memory, int island) {
   movePoints(s.memory, memory, [&](const ContactMemory& m) { return !s.asleep[m.a]; });
 }
 
+// Whether a surface's belt moves, or its velocity changes over the step: what rests on
+// it is carried, not at rest.
+bool beltMoves(const WorldData& data, size_t surface) {
+  return data.beltVelocity[surface] != Vec3::Zero() || data.beltRate[surface] != Vec3::Zero();
+}
+
+// Wakes the sleeping islands that rest on a moving belt (their contact memory, set
+// aside while they sleep, names the surface).
+bool wakeCarried(WorldData& data) {
+  SleepState& s = data.sleep;
+  bool anyMoves = false;
+  for (size_t k = 0; k < data.beltVelocity.size(); ++k) anyMoves = anyMoves || beltMoves(data, k);
+  if (!anyMoves || s.sleeping == 0) return false;
+  std::vector<int> islands;
+  for (const ContactMemory& m : s.memory)
+    if (m.b < 0 && beltMoves(data, static_cast<size_t>(m.surface))) islands.push_back(s.island[m.a]);
+  for (int island : islands) wakeIsland(s, data.contactMemory, island);
+  return !islands.empty();
+}
+
 }  // namespace
 
 bool wakeDriven(WorldData& data) {
@@ -36,7 +56,7 @@ bool wakeDriven(WorldData& data) {
     wakeIsland(s, data.contactMemory, s.island[i]);
     woke = true;
   }
-  return woke;
+  return wakeCarried(data) || woke;
 }
 
 void holdSleepers(const SleepState& s, const std::vector<BodyState>& Y, std::vector<BodyState>& next) {
@@ -82,6 +102,8 @@ bool updateSleep(const WorldModel& model, WorldData& data, double h, CollisionCa
     const bool still = speed < model.sleep.speed && !drives(data.input[i]) && !drives(data.inputRate[i]);
     s.stillFor[i] = still ? s.stillFor[i] + h : 0.0;
   }
+  for (const Contact& c : cache.contacts)  // carried by a moving belt: not at rest, however slow
+    if (c.b < 0 && beltMoves(data, static_cast<size_t>(c.surface))) s.stillFor[c.a] = 0.0;
   // An island sleeps whole, when it rests on a surface and all of it has been still
   // long enough. (A sleeping body has no contacts: the detector skips its pairs with
   // sleeping bodies and surfaces, and any other one woke it.)

@@ -2,12 +2,13 @@
 // settled costs neither integration nor detection nor a contact solve until something
 // disturbs it. An island is a set of bodies joined by contacts (a surface joins none);
 // it falls asleep when every body of it has been still (no point faster than
-// SleepRules::speed, no input driving it) for SleepRules::time and the island rests on
-// a surface. Bodies floating free never sleep: a slow tumble in space, a body bobbing
-// in a fluid or a slow fall are motion, not rest. A sleeping body keeps its pose and
-// its contact memory; its velocities are zero. It wakes, with its whole island, when
-// an awake body touches it (or comes within the speculative margin), when an input
-// drives it, or when a tunable parameter changes (wakeAll).
+// SleepRules::speed, no input driving it, not on a moving belt) for SleepRules::time
+// and the island rests on a surface. Bodies floating free never sleep: a slow tumble
+// in space, a body bobbing in a fluid or a slow fall are motion, not rest. A sleeping
+// body keeps its pose and its contact memory; its velocities are zero. It wakes, with
+// its whole island, when an awake body touches it (or comes within the speculative
+// margin), when an input drives it or the belt it rests on moves, or when a tunable
+// parameter changes (wakeAll).
 #pragma once
 
 #include <vector>
@@ -18,7 +19,8 @@
 namespace rigid {
 
 // Wakes the island of every sleeping body that an input drives (a force, a torque or
-// their rates not zero). Returns whether any woke.
+// their rates not zero) or that rests on a moving belt (a surface's beltVelocity or its
+// rate not zero). Returns whether any woke.
 bool wakeDriven(WorldData& data);
 
 // Sleeping bodies stay where they are: next[i] = Y[i].

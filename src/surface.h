@@ -18,6 +18,11 @@ struct Surface {
   double restitution = 0.5;             // xi, 1
   double rollingResistance = 0.0;       // m, the lever of the moment that resists rolling
   bool forceOutput = true;              // the FMU reports NAME.force (the scene's "outputs")
+  // A conveyor: the scene gives "beltVelocity", the velocity of the surface's material
+  // (m/s, world frame), and the FMU has the input NAME.beltVelocity with it as start
+  // (its value in a run: WorldData::beltVelocity).
+  bool belt = false;
+  Vec3 beltVelocity = Vec3::Zero();
   // Derived by finishSurface():
   Vec3 centre = Vec3::Zero();      // m, world frame
   Mat3 R_WS = Mat3::Identity();    // surface frame -> world

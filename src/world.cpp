@@ -34,6 +34,8 @@ WorldData initialData(const WorldModel& model) {
     d.input.push_back(zeroInput(body.loads.size()));
     d.inputRate.push_back(zeroInput(body.loads.size()));
   }
+  for (const Surface& s : model.surfaces) d.beltVelocity.push_back(s.beltVelocity);
+  d.beltRate.assign(model.surfaces.size(), Vec3::Zero());
   d.aux.resize(n);
   d.contacts.assign(n, 0);
   d.sleep = awakeState(n);

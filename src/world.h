@@ -87,6 +87,11 @@ struct WorldData {
   // What the inputs of the driven bodies say (drive.h), one per body (a free body's is
   // unused). The FMU turns them into the driven bodies' velocities of each internal step.
   std::vector<DriveInput> drive;
+  // Per surface, the velocity of its material (m/s, world frame; a conveyor's belt, the
+  // FMU input S.beltVelocity, zero for other surfaces) and its rate over the current
+  // communication step (m/s^2, the input's derivative; zero unless a master sets it).
+  // Only its part along a contact's plane acts (constraint_solver.cpp, Manifold::belt).
+  std::vector<Vec3> beltVelocity, beltRate;
   std::vector<BodyAux> aux;   // V, R and omega of Y, valid after initialise() and step()
   std::vector<int> contacts;  // contact points of each body at the end of the last step
   // The energy audit (world.cpp), per body: twice the rotational energy of Y, that at
@@ -121,7 +126,8 @@ struct WorldData {
   StepProfile profile;
 };
 
-// Data for the start of a run: every body at its start values, inputs zero.
+// Data for the start of a run: every body at its start values, inputs zero but the
+// belts' velocities (the scene's, Surface::beltVelocity).
 WorldData initialData(const WorldModel& model);
 
 // Zeroes WorldData::contactLoads.

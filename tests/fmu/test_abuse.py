@@ -3,8 +3,9 @@
 1. Fuzzing: random sequences of FMI calls with hostile arguments (NaN, ±Inf, ±1e308,
    0, negative numbers, unknown value references, random and truncated state bytes,
    stale and foreign FMU-state pointers, unknown log categories, NULL pointers), on
-   every example scene, each scene in its own process so that a crash is a failing exit
-   code reported with the seed and the last calls.
+   every example scene and on the Playground with conveyors, each scene in its own
+   process so that a crash is a failing exit code reported with the seed and the last
+   calls.
 2. Eight instances in eight threads give the serial results bitwise.
 3. The same inputs give bitwise the same outputs in two processes.
 4. valgrind: instantiate/step/state/free cycles leak nothing and touch no invalid memory.
@@ -44,6 +45,17 @@ def example(name):
 
 
 PLAYGROUND = example("default.json")
+
+
+def with_belts(scene):
+    """The scene with its surfaces made conveyors (inputs S.beltVelocity[1..3]): belts
+    along x in the world frame, so that on a tilted surface part of it is normal (and
+    ignored)."""
+    belted = [dict(s, beltVelocity=[0.3 * (k + 1), 0.0, 0.0]) for k, s in enumerate(scene["surfaces"])]
+    return dict(scene, name=scene["name"] + "Belts", surfaces=belted)
+
+
+FUZZ_SCENES = {"default-belts.json": with_belts(PLAYGROUND)}  # beside the example scenes
 
 
 # =====================================================================================
@@ -635,12 +647,13 @@ def run_child(code, tmp_path, timeout):
     ("tumble.json", FUZZ_SEEDS, FUZZ_CALLS),
     ("thruster.json", FUZZ_SEEDS, FUZZ_CALLS),
     ("pusher.json", FUZZ_SEEDS, FUZZ_CALLS),  # driven bodies and a moving surface
+    ("default-belts.json", FUZZ_SEEDS, FUZZ_CALLS),
     # once aborted the process inside FCL (see FCL_GJK_ABORT); fixed: states beyond 1e12 m
     # or non-finite are refused before collision detection sees them
     pytest.param("default.json", [105], 800, id="default.json-seed105"),
 ])
 def test_fuzzing_the_fmi_calls(fmu_of, scene_file, seeds, calls, tmp_path):
-    fmu = fmu_of(example(scene_file))
+    fmu = fmu_of(FUZZ_SCENES.get(scene_file) or example(scene_file))
     trace, result = tmp_path / "trace.txt", tmp_path / "result.json"
     code = (f"import test_abuse; "
             f"test_abuse.fuzz_main({str(fmu)!r}, {seeds!r}, {calls}, {str(trace)!r}, "

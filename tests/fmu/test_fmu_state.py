@@ -160,3 +160,43 @@ def test_state_holds_the_energy_audit_and_the_last_step(fmu_of, tmp_path):
     finally:
         straight.close()
         restored.close()
+
+
+def test_a_conveyors_belt_its_rate_and_start_value_are_in_the_state(fmu_of):
+    """On a conveyor (the belt's start value set before initialisation, the belt turned
+    and its input derivative set mid-run, the box sliding towards the new belt speed), a
+    state restored, and one serialised and read into a fresh instance, continue bitwise;
+    the state holds the belt's input, the rate the next step spends, and its start value.
+    fmi2Reset returns the belt to the scene's value."""
+    import scenes
+    fmu = fmu_of(scenes.conveyor("Conveyor", [1.0, 0.0, 0.0]))
+    belt = [f"belt.beltVelocity[{i}]" for i in (1, 2, 3)]
+
+    def run(s, t0):
+        for k in range(20):
+            if k % 5 == 4:
+                s.set_values({"belt.beltVelocity[3]": 0.1 * k})  # the belt's normal part: no effect
+            s.slave.doStep(t0 + k * H, H)
+        return outputs(s)
+
+    s, fresh = Slave(fmu), Slave(fmu)
+    try:
+        s.initialize({"belt.beltVelocity[2]": 0.25})
+        for k in range(6):
+            s.slave.doStep(k * H, H)
+        s.set_values({"belt.beltVelocity[1]": -0.5})
+        s.slave.setRealInputDerivatives(s.vr(["belt.beltVelocity[2]"]), [1], [2.0])
+        state = s.slave.getFMUstate()
+        blob = bytes(s.slave.serializeFMUstate(state))
+        straight = run(s, 6 * H)
+        s.slave.setFMUstate(state)
+        assert s.get(*belt) == [-0.5, 0.25, 0.0]
+        assert run(s, 6 * H) == straight
+        fresh.slave.setFMUstate(fresh.slave.deSerializeFMUstate(blob))
+        assert run(fresh, 6 * H) == straight
+        s.slave.reset()
+        s.initialize()
+        assert s.get(*belt) == [1.0, 0.0, 0.0]  # the scene's start value, not the one set
+    finally:
+        s.close()
+        fresh.close()

@@ -1,9 +1,10 @@
 // The constraint solver (src/constraint_solver.h) against
 // closed forms: friction against spin from the patch under uniform pressure, a puck
-// whose slip and spin stop together, momentum kept through contact to rounding, and
-// stacks that stand with sleep off.
+// whose slip and spin stop together, a box carried by a conveyor, momentum kept through
+// contact to rounding, and stacks that stand with sleep off.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -146,6 +147,97 @@ TEST(ConstraintSolver, RollingResistanceStopsARollingSphereAtTheClosedFormDistan
   EXPECT_NEAR(sim.data.Y[0].X.x(), distance, 1e-3 * distance);
   EXPECT_LT(sim.data.aux[0].V.norm(), 1e-6);
   EXPECT_LT(sim.data.aux[0].omega.norm(), 1e-5);
+}
+
+// A 0.2 m cube of 1 kg set down at rest on a floor whose belt moves at `belt` (m/s);
+// mu_s 0.6 and mu_k 0.4 on both sides, so the pair's too.
+json conveyor(const Vec3& belt, const Vec3& velocity = Vec3::Zero()) {
+  json floor = floorSurface(0.6, 0.4);
+  floor["beltVelocity"] = {belt.x(), belt.y(), belt.z()};
+  json cube = box("cube", Vec3::Constant(0.2), Vec3(0, 0, 0.1), Quat::Identity(), 0.0, 0.6, 0.4);
+  cube["velocity"] = {velocity.x(), velocity.y(), velocity.z()};
+  return sceneOf(cube, floor);
+}
+
+// Whether the cube slides: its friction bounded by mu_k (the contact memory's state).
+bool slides(const Sim& sim) {
+  return std::any_of(sim.data.contactMemory.begin(), sim.data.contactMemory.end(),
+                     [](const rigid::ContactMemory& m) { return m.sliding; });
+}
+
+// Steps (one at least) until the cube's friction holds it, no longer sliding, calling
+// `each` after every step: the time taken (s).
+template <class Each>
+double timeToStick(Sim& sim, double limit, Each each) {
+  double t = 0.0;
+  do {
+    sim.run(sim.model.maxStep);
+    t += sim.model.maxStep;
+    each();
+  } while (t < limit && slides(sim));
+  return t;
+}
+
+// A box set at rest on a conveyor moving at u: kinetic friction accelerates it at
+// mu_k g, so it reaches u after u / (mu_k g), having slid u^2 / (2 mu_k g) relative to
+// the belt, both within 1 %. It then rocks on its soft contacts as it levels (it slid
+// pitched forward) and, 0.2 s later, rides at u exactly: friction holds it, static.
+// Seen from the belt, it moves all along as a box launched at -u on a still floor does
+// (to 1e-12: the belt is a moving frame to the friction, as it should be).
+TEST(ConstraintSolver, ABoxSetOnAConveyorReachesTheBeltsSpeedAfterTheClosedFormTimeAndSlide) {
+  const double u = 1.0, muk = 0.4, a = muk * kG;
+  Sim sim(conveyor(Vec3(u, 0, 0))), still(conveyor(Vec3::Zero(), Vec3(-u, 0, 0)));
+  const double reached = timeToStick(sim, 1.0, [] {});
+  const double slid = u * reached - sim.data.Y[0].X.x();
+  std::printf("reached u after %.4f s (closed form %.4f s), slid %.5f m on the belt (closed form %.5f m)\n", reached,
+              u / a, slid, u * u / (2.0 * a));
+  EXPECT_NEAR(reached, u / a, 0.01 * u / a);
+  EXPECT_NEAR(slid, u * u / (2.0 * a), 0.01 * u * u / (2.0 * a));
+  sim.run(0.2);
+  double worst = 0.0, crept = 0.0, t = reached + 0.2;
+  const double at = u * t - sim.data.Y[0].X.x();
+  sim.run(1.0, [&] {
+    t += sim.model.maxStep;
+    worst = std::max(worst, (sim.data.aux[0].V - Vec3(u, 0, 0)).norm());
+    crept = std::max(crept, std::abs(u * t - sim.data.Y[0].X.x() - at));
+    EXPECT_FALSE(slides(sim));
+  });
+  std::printf("then rides at u within %.3g m/s, creeping %.3g m on the belt\n", worst, crept);
+  EXPECT_LT(worst, 1e-12);
+  EXPECT_LT(crept, 1e-12);
+  still.run(t);
+  EXPECT_LT((sim.data.aux[0].V - still.data.aux[0].V - Vec3(u, 0, 0)).norm(), 1e-12);
+  EXPECT_LT((sim.data.aux[0].omega - still.data.aux[0].omega).norm(), 1e-12);
+  EXPECT_NEAR(sim.data.Y[0].X.x() - u * t, still.data.Y[0].X.x(), 1e-12);
+}
+
+// The belt, an input, turned mid-run from u1 to u2 (another direction): the box slides
+// toward the new velocity at mu_k g along the line between them in velocity space and
+// takes |u2 - u1| / (mu_k g) to reach it, within 1 %. The belt's part along the floor's
+// normal does nothing.
+TEST(ConstraintSolver, AConveyorTurnedMidRunTakesTheBoxToItsNewVelocityAtMuKG) {
+  const double a = 0.4 * kG;
+  const Vec3 u1(1.0, 0, 0), u2(-0.5, 0.8, 0), along = (u2 - u1).normalized();
+  Sim sim(conveyor(u1));
+  sim.run(0.5);
+  ASSERT_LT((sim.data.aux[0].V - u1).norm(), 1e-12);
+  sim.data.beltVelocity[0] = u2;
+  double off = 0.0;  // m/s, the velocity's largest distance from the line through u1 and u2
+  const double reached = timeToStick(sim, 2.0, [&] {
+    const Vec3 d = sim.data.aux[0].V - u1;
+    off = std::max(off, (d - d.dot(along) * along).norm());
+  });
+  std::printf("reached u2 after %.4f s (closed form %.4f s), %.3g m/s off the line at most\n", reached,
+              (u2 - u1).norm() / a, off);
+  EXPECT_NEAR(reached, (u2 - u1).norm() / a, 0.01 * (u2 - u1).norm() / a);
+  EXPECT_LT(off, 1e-4 * (u2 - u1).norm());
+  sim.run(0.2);
+  EXPECT_LT((sim.data.aux[0].V - u2).norm(), 1e-12);
+  Sim plain(conveyor(u1)), tilted(conveyor(u1 + Vec3(0, 0, 5.0)));
+  plain.run(0.5);
+  tilted.run(0.5);
+  EXPECT_EQ(tilted.data.Y[0].X, plain.data.Y[0].X);
+  EXPECT_EQ(tilted.data.Y[0].P, plain.data.Y[0].P);
 }
 
 // Two spinning boxes with friction meet obliquely in free space: linear momentum and

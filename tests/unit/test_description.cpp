@@ -365,3 +365,40 @@ TEST(Parameters, MaterialAndFluidConstantsAreTunableParameters) {
   EXPECT_EQ(rigidfmu::frictionConflict(model),
             "floor.kineticFriction: must be <= floor.staticFriction (0.25), got 0.5");
 }
+
+// A conveyor's belt velocity is an input S.beltVelocity[1..3] (m/s) of the surfaces
+// whose scene gives it, after every other variable, starting at the scene's value:
+// before the run it sets the start value, in a run the belt's velocity. A scene without
+// belts has the variables it had.
+TEST(Parameters, ABeltVelocityIsAnInputOfTheConveyorsOnly) {
+  const std::string bodies =
+      R"("name": "C", "bodies": [{"name": "b", "shape": {"type": "sphere", "radius": 0.1}, "mass": 1.0}], )";
+  const std::string wall = R"({"name": "wall", "min": [5, -1, 0], "max": [6, 1, 1]})";
+  const rigid::Scene plain = rigid::parseScene("{" + bodies + R"("surfaces": [)" + wall + "]}");
+  const rigid::Scene scene =
+      rigid::parseScene("{" + bodies + R"("surfaces": [{"name": "belt", "min": [-1, -1, -1], "max": [1, 1, 0], )" +
+                        R"("beltVelocity": [0.5, 0, 0]}, )" + wall + "]}");
+  const std::vector<Variable> vars = rigidfmu::modelVariables(scene), before = rigidfmu::modelVariables(plain);
+  for (const Variable& v : before) EXPECT_EQ(v.name.find("beltVelocity"), std::string::npos) << v.name;
+  ASSERT_EQ(vars.size(), before.size() + 9u);  // the belt's friction, restitution, force and velocity
+  rigid::WorldModel model = scene.model;
+  rigid::WorldData data = rigid::initialData(model);
+  for (int c = 0; c < 3; ++c) {
+    const Variable& v = vars[vars.size() - 3 + static_cast<size_t>(c)];
+    EXPECT_EQ(v.name, "belt.beltVelocity[" + std::to_string(c + 1) + "]");
+    EXPECT_EQ(v.causality, Causality::Input);
+    EXPECT_EQ(v.unit, "m/s");
+    EXPECT_FALSE(v.description.empty());
+    EXPECT_EQ(rigidfmu::readValue(v, model, data, Phase::Setup), c == 0 ? 0.5 : 0.0);
+  }
+  const Variable& x = find(vars, "belt.beltVelocity[1]");
+  EXPECT_EQ(rigidfmu::writeValue(x, 2.0, model, data, Phase::Setup), "");
+  EXPECT_EQ(rigid::initialData(model).beltVelocity[0], rigid::Vec3(2.0, 0, 0));  // the run starts there
+  EXPECT_EQ(rigidfmu::writeValue(x, -1.0, model, data, Phase::Running), "");
+  EXPECT_EQ(data.beltVelocity[0], rigid::Vec3(-1.0, 0, 0));
+  EXPECT_EQ(rigidfmu::readValue(x, model, data, Phase::Running), -1.0);
+  EXPECT_EQ(model.surfaces[0].beltVelocity, rigid::Vec3(2.0, 0, 0));
+  EXPECT_EQ(rigidfmu::writeValue(x, std::numeric_limits<double>::infinity(), model, data, Phase::Running),
+            "belt.beltVelocity[1]: must be finite, got inf");
+  EXPECT_EQ(data.beltVelocity[1], rigid::Vec3::Zero());  // the wall has no belt
+}

@@ -408,6 +408,23 @@ TEST(Scene, SurfaceIsRead) {
   EXPECT_TRUE(f.halfExtent.isApprox(0.5 * (f.max - f.min)));
 }
 
+// "beltVelocity" makes a surface a conveyor (its velocity an FMU input); without it a
+// surface has none and stays still.
+TEST(Scene, ABeltVelocityMakesTheSurfaceAConveyor) {
+  auto with = [](const std::string& belt) {
+    return sceneWith("", R"("surfaces": [{"name": "floor", "min": [-5, -5, -1], "max": [5, 5, 0])" + belt + "}], ");
+  };
+  const rigid::Surface still = rigid::parseScene(with("")).model.surfaces[0];
+  EXPECT_FALSE(still.belt);
+  EXPECT_EQ(still.beltVelocity, rigid::Vec3::Zero());
+  const rigid::Surface belt = rigid::parseScene(with(R"(, "beltVelocity": [1.5, -0.5, 0])")).model.surfaces[0];
+  EXPECT_TRUE(belt.belt);
+  EXPECT_EQ(belt.beltVelocity, rigid::Vec3(1.5, -0.5, 0));
+  EXPECT_TRUE(rigid::parseScene(with(R"(, "beltVelocity": [0, 0, 0])")).model.surfaces[0].belt);
+  EXPECT_SCENE_ERROR(with(R"(, "beltVelocity": [1, 0])"), "surfaces[0].beltVelocity: must be an array of 3 numbers");
+  EXPECT_SCENE_ERROR(with(R"(, "beltVelocity": [1, 0, "x"])"), "surfaces[0].beltVelocity[2]: must be a number");
+}
+
 TEST(Scene, WaterMediumTakesWatersValues) {
   const rigid::Scene s = rigid::parseScene(sceneWith("", std::string(R"("media": [)") + kMedium + "], "));
   ASSERT_EQ(s.model.media.size(), 1u);

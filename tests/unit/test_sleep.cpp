@@ -81,6 +81,30 @@ TEST(Sleep, AnInputForceWakesASleepingBodyWhichThenSlidesAsTheClosedFormSays) {
   EXPECT_NEAR(sim.data.aux[0].V.x(), a * t, 1e-6);
 }
 
+// A box asleep on a conveyor at rest wakes at the next step once the belt is set
+// moving, and is carried: it rides at the belt's speed. On a belt slower than the sleep
+// speed it never falls asleep: it moves.
+TEST(Sleep, ABoxOnAConveyorWakesWhenTheBeltStartsAndNeverSleepsOnAMovingOne) {
+  const double mu = 0.5;
+  json floor = floorSurface(mu, mu);
+  floor["beltVelocity"] = {0, 0, 0};
+  json cube = box("cube", Vec3::Constant(kEdge), Vec3(0, 0, 0.5 * kEdge), Quat::Identity(), 0.0, mu, mu);
+  Sim sim(sleeping(sceneOf(cube, {floor})));
+  sim.run(1.0);
+  ASSERT_EQ(asleep(sim), 1);
+  sim.data.beltVelocity[0] = Vec3(0.5, 0, 0);
+  sim.run(sim.model.maxStep);
+  EXPECT_EQ(asleep(sim), 0);
+  sim.run(0.5);  // it reaches the belt's speed after 0.5 / (mu g) = 0.1 s
+  EXPECT_NEAR(sim.data.aux[0].V.x(), 0.5, 1e-9);
+  const double slow = 0.5 * sim.model.sleep.speed, x0 = sim.data.Y[0].X.x();
+  sim.data.beltVelocity[0] = Vec3(slow, 0, 0);
+  sim.run(5.0, [&] { ASSERT_EQ(asleep(sim), 0); });
+  // carried 5 s at the slow speed, having slid (0.5 - slow)^2 / (2 mu g) as it slowed
+  const double slid = (0.5 - slow) * (0.5 - slow) / (2.0 * mu * kG);
+  EXPECT_NEAR(sim.data.Y[0].X.x() - x0, 5.0 * slow + slid, 0.01 * slid);
+}
+
 // A cube turning slowly in space (its points at 4.3 mm/s, below the sleep speed) turns
 // on at its rate: only what rests on a surface sleeps.
 TEST(Sleep, ABodyFloatingFreeNeverSleepsHoweverSlowly) {

@@ -261,6 +261,28 @@ TEST(Snapshot, TheBytesAreThoseOfTheFormatVersion) {
   EXPECT_EQ(hashOf(bytes), 0x836126361584adbull);
 }
 
+// A conveyor's belt velocity (its start value, its value in the run and its rate) comes
+// back from the bytes; only a surface with a belt adds them (72 bytes), so that the
+// states of scenes without belts keep the layout pinned above.
+TEST(Snapshot, AConveyorsBeltComesBackAndOnlyAConveyorAddsBytes) {
+  rigid::WorldModel model = sceneModel();
+  const size_t plain = rigidfmu::serialize(filled(model), kGuid).size();
+  model.surfaces[1].belt = true;  // the wall, as if its scene gave "beltVelocity"
+  Snapshot s = filled(model);
+  s.model.surfaces[1].beltVelocity = Vec3(1.5, 2.5, 3.5);
+  s.data.beltVelocity[1] = Vec3(4.5, 5.5, 6.5), s.data.beltRate[1] = Vec3(7.5, 8.5, 9.5);
+  const std::vector<char> bytes = rigidfmu::serialize(s, kGuid);
+  EXPECT_EQ(bytes.size(), plain + 72u);
+  Snapshot back = fresh(model);
+  ASSERT_EQ(readInto(back, bytes), "");
+  EXPECT_EQ(back.model.surfaces[1].beltVelocity, s.model.surfaces[1].beltVelocity);
+  EXPECT_EQ(back.data.beltVelocity, s.data.beltVelocity);
+  EXPECT_EQ(back.data.beltRate, s.data.beltRate);
+  expectSameRunAndParameters(s, back);
+  expectSameBodies(s.data, back.data);
+  expectSameHistory(s.data, back.data);
+}
+
 struct Spoilt {
   const char* why;                       // the reason deserialize() gives
   std::function<void(Snapshot&)> spoil;  // a value out of range

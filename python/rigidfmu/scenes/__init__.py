@@ -62,3 +62,13 @@ def cube_on_floor(name, edge, floor_friction=0.5, **fields):
     box = body("box", shape={"type": "box", "size": [edge] * 3}, position=[0, 0, edge / 2],
                restitution=0.0, **fields)
     return scene(name, [box], step=1e-3, surfaces=[floor(floor_friction, floor_friction)])
+
+
+def conveyor(name, belt, edge=0.2, mus=0.6, muk=0.4, **fields):
+    """A cube "box" of 1 kg set down at rest on a conveyor: a floor (top face z = 0)
+    whose belt moves at `belt` (m/s, world frame); mu_s and mu_k on both sides, so the
+    pair's too (step 1 ms)."""
+    box = body("box", shape={"type": "box", "size": [edge] * 3}, position=[0, 0, edge / 2],
+               restitution=0.0, staticFriction=mus, kineticFriction=muk, **fields)
+    belt_floor = dict(floor(mus, muk, half=50.0, name="belt"), beltVelocity=list(belt))
+    return scene(name, [box], step=1e-3, surfaces=[belt_floor])

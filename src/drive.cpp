@@ -19,8 +19,6 @@ std::vector<DriveInput> startDrive(const WorldModel& model) {
 
 DrivePath drivePath(const BodyState& y, const DriveInput& in, double h) {
   DrivePath p;
-  p.X0 = y.X;
-  p.q0 = y.q;
   const Vec3 gap = in.position - y.X;
   p.jump = gap.norm();
   p.closing = gap / h;

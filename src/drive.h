@@ -34,8 +34,6 @@ std::vector<DriveInput> startDrive(const WorldModel& model);
 // the inputs say it is at the step's start (zero when the master's pose and velocity
 // agree) is closed at a constant rate over the step.
 struct DrivePath {
-  Vec3 X0 = Vec3::Zero();
-  Quat q0 = Quat::Identity();
   Vec3 closing = Vec3::Zero();      // m/s: (position - X0) / h
   Vec3 closingTurn = Vec3::Zero();  // rad/s: the rotation vector of orientation q0^-1, / h
   double jump = 0.0;                // m: |position - X0|, what the inputs moved the body by

@@ -161,7 +161,7 @@ Status Instance::enterInitializationMode() {
 Status Instance::exitInitializationMode() {
   for (const rigid::BodyConstants& b : model_.bodies)
     if (b.start.orientation.norm() < 1e-12) return error(b.name + ".orientation: must not be the zero quaternion");
-  if (const std::string why = frictionConflict(model_); !why.empty()) return error(why);
+  if (const std::string why = parameterConflict(model_); !why.empty()) return error(why);
   data_ = rigid::initialData(model_);
   clock_.restartAt(startTime_);
   state_ = kStepComplete;
@@ -304,7 +304,7 @@ Status Instance::checkStep(double tc, double h) const {
     return error("currentCommunicationPoint " + num(tc) + " is not the FMU's time " + num(time) + " (tolerance " +
                  num(tolerance) + ")");
   // friction set since the last step: mu_k <= mu_s, checked now that both are set
-  if (const std::string why = frictionConflict(model_); !why.empty()) return error(why);
+  if (const std::string why = parameterConflict(model_); !why.empty()) return error(why);
   // a driven body's orientation, set a component at a time, is whole now
   for (size_t i = 0; i < model_.bodies.size(); ++i) {
     const double norm = data_.drive[i].orientation.norm();

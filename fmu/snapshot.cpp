@@ -216,6 +216,19 @@ void visitContactPoint(Archive& a, Point& m) {
   a(m.localA), a(m.normalImpulse), a(m.tangentImpulse), a(m.twistImpulse), a.u8(m.sliding);
 }
 
+// Each joint's tunable parameters and inputs' start values, then its run's memory,
+// inputs, reactions and coordinates (how many joints, and of which type, is the scene's).
+template <class Archive, class Model, class Data>
+void visitJoints(Archive& a, Model& m, Data& d) {
+  for (size_t k = 0; k < m.joints.size(); ++k) {
+    auto& j = m.joints[k];
+    a(j.maxMotorForce), a(j.stiffness), a(j.damping), a(j.lower), a(j.upper), a(j.motorSpeed), a(j.targetPosition);
+    for (auto& impulse : d.joints.memory[k]) a(impulse);
+    a(d.joints.angle[k]), a(d.joints.motorSpeed[k]), a(d.joints.targetPosition[k]);
+    a(d.joints.impulse[k]), a(d.joints.angularImpulse[k]), a(d.joints.position[k]), a(d.joints.speed[k]);
+  }
+}
+
 // Every field of a state, in the order of its bytes (after the header).
 template <class Archive, class State>
 void visitState(Archive& a, State& s) {
@@ -237,6 +250,7 @@ void visitState(Archive& a, State& s) {
   // the awake bodies' contact memory, then the sleeping ones' (acceptContactMemory parts them)
   a.joinedList(d.contactMemory, d.sleep.memory, most, "the serialized state is corrupt (contact points)",
                [&](auto& m) { visitContactPoint(a, m); });
+  visitJoints(a, s.model, d);
 }
 
 // ---- the tripwire ---------------------------------------------------------------------
@@ -269,7 +283,7 @@ constexpr size_t fieldCount() {
 // clang-format off
 static_assert(fieldCount<Snapshot>() == 7,
               "a field was added to Snapshot: visit it in visitRun (fmu/snapshot.cpp), then update this count");
-static_assert(fieldCount<rigid::WorldModel>() == 10,
+static_assert(fieldCount<rigid::WorldModel>() == 11,
               "a field was added to rigid::WorldModel: if a parameter sets it, visit it in visitRun "
               "(fmu/snapshot.cpp); then update this count");
 static_assert(fieldCount<rigid::BodyConstants>() == 16,
@@ -284,7 +298,7 @@ static_assert(fieldCount<rigid::Surface>() == 14,
 static_assert(fieldCount<rigid::Medium>() == 6,
               "a field was added to rigid::Medium: if a parameter sets it, visit it in visitParameters "
               "(fmu/snapshot.cpp); then update this count");
-static_assert(fieldCount<rigid::WorldData>() == 18,
+static_assert(fieldCount<rigid::WorldData>() == 19,
               "a field was added to rigid::WorldData: unless it is derived or scratch, visit it in visitState "
               "(fmu/snapshot.cpp); then update this count");
 static_assert(fieldCount<rigid::BodyState>() == 4,
@@ -311,6 +325,12 @@ static_assert(fieldCount<rigid::RestingPush>() == 3,
 static_assert(fieldCount<rigid::IntegratorState>() == 2,
               "a field was added to rigid::IntegratorState: visit it in visitState (fmu/snapshot.cpp), then update "
               "this count");
+static_assert(fieldCount<rigid::JointConstants>() == 22,
+              "a field was added to rigid::JointConstants: if a parameter or input sets it, visit it in "
+              "visitJoints (fmu/snapshot.cpp); then update this count");
+static_assert(fieldCount<rigid::JointData>() == 8,
+              "a field was added to rigid::JointData: unless it is derived, visit it in visitJoints "
+              "(fmu/snapshot.cpp); then update this count");
 static_assert(fieldCount<rigid::ContactMemory>() == 8,
               "a field was added to rigid::ContactMemory: visit it in visitContactPoint (fmu/snapshot.cpp), then "
               "update this count");

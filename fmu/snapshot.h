@@ -26,8 +26,9 @@ struct Snapshot {
 // 2: input derivatives; 3: energy audit, last step; 4: the contact solver's memory;
 // 5: which bodies sleep; 6: friction, surfaces' restitution, media's density and
 // viscosity, forces at load points; 7: the contact loads, and those of sleeping bodies;
-// 8: the contact points' twist impulse; 9: the communication clock, driven bodies' inputs
-inline constexpr uint32_t kSnapshotVersion = 9;
+// 8: the contact points' twist impulse; 9: the communication clock, driven bodies' inputs;
+// 10: joints
+inline constexpr uint32_t kSnapshotVersion = 10;
 
 // The bytes of a snapshot of a scene with this GUID.
 std::vector<char> serialize(const Snapshot& s, const std::string& guid);

@@ -134,6 +134,130 @@ double& frictionOf(const Variable& v, WorldModel& model) {
   }
 }
 
+// The unit of a joint's coordinate, its rate and the force along it.
+struct JointUnits {
+  const char* position;
+  const char* speed;
+  const char* force;
+  const char* stiffness;
+  const char* damping;
+};
+JointUnits unitsOf(const rigid::JointConstants& j) {
+  if (j.type == rigid::JointType::Revolute) return {"rad", "rad/s", "N.m", "N.m/rad", "N.m.s/rad"};
+  return {"m", "m/s", "N", "N/m", "N.s/m"};
+}
+
+// The joints' variables, after every other (their value references come last): the
+// coordinate and its speed, the reaction, and what the scene gave the joint (motor,
+// spring, limits) as inputs and tunable parameters.
+template <class Add>
+void addJointVariables(const WorldModel& model, Add add) {
+  const char* mean = "mean over the last communication step (0 before the first)";
+  for (size_t k = 0; k < model.joints.size(); ++k) {
+    const rigid::JointConstants& j = model.joints[k];
+    const int ji = static_cast<int>(k);
+    const JointUnits u = unitsOf(j);
+    const std::string what = j.type == rigid::JointType::Revolute    ? "angle of b about the axis from its start"
+                             : j.type == rigid::JointType::Prismatic ? "offset of b's anchor from a's along the axis"
+                                                                     : "distance between the anchors";
+    auto scalar = [&](const char* field, Quantity q, Causality causality, Variability variability, const char* unit,
+                      const std::string& meaning) {
+      const Initial initial = causality == Causality::Output  ? Initial::Calculated
+                              : causality == Causality::Input ? Initial::None
+                                                              : Initial::Exact;
+      add({0, j.name + "." + field, q, ji, 0, causality, variability, initial, BaseType::Real, unit,
+           j.name + ": " + meaning});
+    };
+    if (rigid::hasCoordinate(j.type)) {
+      scalar("position", Quantity::JointPosition, Causality::Output, Variability::Continuous, u.position,
+             what + (j.type == rigid::JointType::Revolute ? " (counted through every turn)" : ""));
+      scalar("speed", Quantity::JointSpeed, Causality::Output, Variability::Continuous, u.speed,
+             "rate of change of its position");
+    }
+    for (int c = 0; c < 3; ++c) {
+      add({0, j.name + ".reactionForce[" + std::to_string(c + 1) + "]", Quantity::JointReactionForce, ji, c,
+           Causality::Output, Variability::Continuous, Initial::Calculated, BaseType::Real, "N",
+           j.name + ": force the joint exerts on its second body, world frame, " + mean + ", " + kAxis[c]});
+    }
+    for (int c = 0; c < 3; ++c) {
+      add({0, j.name + ".reactionTorque[" + std::to_string(c + 1) + "]", Quantity::JointReactionTorque, ji, c,
+           Causality::Output, Variability::Continuous, Initial::Calculated, BaseType::Real, "N.m",
+           j.name + ": torque the joint exerts on its second body about its anchor there, world frame, " + mean + ", " +
+               kAxis[c]});
+    }
+    if (j.motor) {
+      scalar("motorSpeed", Quantity::JointMotorSpeed, Causality::Input, Variability::Continuous, u.speed,
+             "the motor's target speed");
+      scalar(j.type == rigid::JointType::Revolute ? "maxMotorTorque" : "maxMotorForce", Quantity::JointMaxMotorForce,
+             Causality::Parameter, Variability::Tunable, u.force, "the most the motor exerts, > 0");
+    }
+    if (j.spring) {
+      if (j.type != rigid::JointType::Distance)
+        scalar("targetPosition", Quantity::JointTargetPosition, Causality::Input, Variability::Continuous, u.position,
+               "the position the spring pulls toward");
+      scalar("stiffness", Quantity::JointStiffness, Causality::Parameter, Variability::Tunable, u.stiffness,
+             "the spring's stiffness, >= 0");
+      scalar("damping", Quantity::JointDamping, Causality::Parameter, Variability::Tunable, u.damping,
+             "the spring's damping, >= 0");
+    }
+    if (j.limited) {
+      scalar("lower", Quantity::JointLower, Causality::Parameter, Variability::Tunable, u.position,
+             "lower limit of its position, <= upper");
+      scalar("upper", Quantity::JointUpper, Causality::Parameter, Variability::Tunable, u.position,
+             "upper limit of its position, >= lower");
+    }
+  }
+}
+
+// A joint's value (Setup: the start values; Running: the run's).
+double jointValue(const Variable& v, const WorldModel& model, const WorldData& data, Phase phase) {
+  const rigid::JointConstants& j = model.joints[static_cast<size_t>(v.body)];
+  const size_t k = static_cast<size_t>(v.body);
+  const bool setup = phase == Phase::Setup;
+  const double duration = data.contactLoads.duration;
+  switch (v.quantity) {
+    case Quantity::JointPosition: return data.joints.position[k];
+    case Quantity::JointSpeed: return data.joints.speed[k];
+    case Quantity::JointReactionForce:
+      return setup || !(duration > 0.0) ? 0.0 : data.joints.impulse[k][v.component] / duration;
+    case Quantity::JointReactionTorque:
+      return setup || !(duration > 0.0) ? 0.0 : data.joints.angularImpulse[k][v.component] / duration;
+    case Quantity::JointMotorSpeed: return setup ? j.motorSpeed : data.joints.motorSpeed[k];
+    case Quantity::JointTargetPosition: return setup ? j.targetPosition : data.joints.targetPosition[k];
+    case Quantity::JointMaxMotorForce: return j.maxMotorForce;
+    case Quantity::JointStiffness: return j.stiffness;
+    case Quantity::JointDamping: return j.damping;
+    case Quantity::JointLower: return j.lower;
+    default: return j.upper;
+  }
+}
+
+// Writes a joint's input or parameter; "" or why not.
+std::string writeJoint(const Variable& v, double value, WorldModel& model, WorldData& data, Phase phase) {
+  rigid::JointConstants& j = model.joints[static_cast<size_t>(v.body)];
+  const size_t k = static_cast<size_t>(v.body);
+  switch (v.quantity) {
+    case Quantity::JointMotorSpeed:
+      (phase == Phase::Setup ? j.motorSpeed : data.joints.motorSpeed[k]) = value;
+      return "";
+    case Quantity::JointTargetPosition:
+      (phase == Phase::Setup ? j.targetPosition : data.joints.targetPosition[k]) = value;
+      return "";
+    case Quantity::JointMaxMotorForce:
+      if (!(value > 0.0)) return v.name + ": must be > 0 " + v.unit + ", got " + fmt(value);
+      j.maxMotorForce = value;
+      return "";
+    case Quantity::JointStiffness:
+    case Quantity::JointDamping:
+      if (value < 0.0) return v.name + ": must be >= 0 " + v.unit + ", got " + fmt(value);
+      (v.quantity == Quantity::JointStiffness ? j.stiffness : j.damping) = value;
+      return "";
+    case Quantity::JointLower: j.lower = value; return "";
+    case Quantity::JointUpper: j.upper = value; return "";
+    default: return v.name + ": a calculated output; it cannot be set";
+  }
+}
+
 }  // namespace
 
 std::vector<Variable> modelVariables(const Scene& scene) {
@@ -293,6 +417,7 @@ std::vector<Variable> modelVariables(const Scene& scene) {
                "along each contact's plane acts, " +
                kAxis[c]});
   }
+  addJointVariables(scene.model, add);
   return vars;
 }
 
@@ -360,6 +485,17 @@ double readValue(const Variable& v, const WorldModel& model, const WorldData& da
                                                                                    : loads.surfaceImpulse;
       return of[static_cast<size_t>(b)][c] / loads.duration;
     }
+    case Quantity::JointPosition:
+    case Quantity::JointSpeed:
+    case Quantity::JointReactionForce:
+    case Quantity::JointReactionTorque:
+    case Quantity::JointMotorSpeed:
+    case Quantity::JointTargetPosition:
+    case Quantity::JointMaxMotorForce:
+    case Quantity::JointStiffness:
+    case Quantity::JointDamping:
+    case Quantity::JointLower:
+    case Quantity::JointUpper: return jointValue(v, model, data, phase);
   }
   return 0.0;
 }
@@ -450,11 +586,22 @@ std::string writeValue(const Variable& v, double value, WorldModel& model, World
     case Quantity::ContactForce:
     case Quantity::ContactTorque:
     case Quantity::SurfaceForce: return v.name + ": a calculated output; it cannot be set";
+    case Quantity::JointPosition:
+    case Quantity::JointSpeed:
+    case Quantity::JointReactionForce:
+    case Quantity::JointReactionTorque:
+    case Quantity::JointMotorSpeed:
+    case Quantity::JointTargetPosition:
+    case Quantity::JointMaxMotorForce:
+    case Quantity::JointStiffness:
+    case Quantity::JointDamping:
+    case Quantity::JointLower:
+    case Quantity::JointUpper: return writeJoint(v, value, model, data, phase);
   }
   return v.name + ": cannot be set";
 }
 
-std::string frictionConflict(const WorldModel& model) {
+std::string parameterConflict(const WorldModel& model) {
   auto check = [](const std::string& name, double mus, double muk) -> std::string {
     if (muk <= mus) return "";
     return name + ".kineticFriction: must be <= " + name + ".staticFriction (" + fmt(mus) + "), got " + fmt(muk);
@@ -463,6 +610,9 @@ std::string frictionConflict(const WorldModel& model) {
     if (std::string why = check(b.name, b.staticFriction, b.kineticFriction); !why.empty()) return why;
   for (const rigid::Surface& s : model.surfaces)
     if (std::string why = check(s.name, s.staticFriction, s.kineticFriction); !why.empty()) return why;
+  for (const rigid::JointConstants& j : model.joints)
+    if (j.limited && j.lower > j.upper)
+      return j.name + ".lower: must be <= " + j.name + ".upper (" + fmt(j.upper) + "), got " + fmt(j.lower);
   return "";
 }
 

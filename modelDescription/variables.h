@@ -17,7 +17,7 @@ enum class Initial { None, Exact, Calculated };
 enum class BaseType { Real, Integer, Enumeration };
 
 // A line per kind: world and solver; body, surface and medium parameters; body state;
-// inputs; contact outputs; surface inputs.
+// inputs; contact outputs; surface inputs; joints' outputs, inputs and parameters.
 // clang-format off
 enum class Quantity {
   Time, Gravity, SolverMethod, SolverStep, SolverTolerance, SolverEnergyGainLimit, SolverSteps, SolverErrorEstimate,
@@ -27,6 +27,8 @@ enum class Quantity {
   Force, Torque, LoadForce,
   Contacts, ContactForce, ContactTorque, SurfaceForce,
   BeltVelocity,
+  JointPosition, JointSpeed, JointReactionForce, JointReactionTorque, JointMotorSpeed, JointTargetPosition,
+  JointMaxMotorForce, JointStiffness, JointDamping, JointLower, JointUpper,
 };
 // clang-format on
 
@@ -34,7 +36,7 @@ struct Variable {
   unsigned vr = 0;   // value reference = index in the table
   std::string name;  // structured name, e.g. ball.position[1]
   Quantity quantity = Quantity::Time;
-  int body = -1;      // index of the body (of the surface or medium for theirs), -1 for world variables
+  int body = -1;      // index of the body (of the surface, medium or joint for theirs), -1 for world variables
   int component = 0;  // 0-based: x, y, z; quaternions w, x, y, z
   Causality causality = Causality::Output;
   Variability variability = Variability::Continuous;
@@ -63,11 +65,13 @@ double readValue(const Variable& v, const rigid::WorldModel& model, const rigid:
 // variable and the limit. Writes only what the variable owns; the caller decides when
 // a variable may be written at all. A friction coefficient is checked alone here
 // (finite, >= 0); that mu_k <= mu_s is checked when the pair takes effect
-// (frictionConflict), so that the two can be set in either order.
+// (parameterConflict), so that the two can be set in either order; so are a joint's
+// limits.
 std::string writeValue(const Variable& v, double value, rigid::WorldModel& model, rigid::WorldData& data, Phase phase);
 
-// "" when every body's and surface's kinetic friction is at most its static friction,
-// else the first that is not, naming both variables and their values.
-std::string frictionConflict(const rigid::WorldModel& model);
+// "" when every body's and surface's kinetic friction is at most its static friction
+// and every joint's lower limit at most its upper, else the first that is not, naming
+// both variables and their values.
+std::string parameterConflict(const rigid::WorldModel& model);
 
 }  // namespace rigidfmu

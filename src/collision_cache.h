@@ -3,6 +3,7 @@
 #pragma once
 
 #include <limits>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -29,6 +30,9 @@ struct CollisionCache {
   ConstraintScratchPtr constraints;
   std::vector<ContactMemory> storedMemory;
   ContactImpulses impulses;
+  // the joints' rows (joint_rows.h), when the world has joints: buffers only, like the
+  // solver's, so copies of the data may share them
+  std::unique_ptr<ExtraRows> joints;
   // the step's islands (islands.h), and which of them are still long enough (sleep.cpp)
   Islands islands;
   std::vector<char> ready;

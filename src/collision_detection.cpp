@@ -524,13 +524,15 @@ struct CollisionDetector::Impl {
     }
   };
 
-  int nBodySlots = 0;                 // slots [0, nBodySlots): bodies that meet something; then surfaces
-  std::vector<int> slotIndex;         // slot -> body or surface index
-  std::vector<int> bodySlot;          // body index -> slot, -1 when it meets nothing
-  std::vector<char> meetsBodies;      // per body slot: pairs with other bodies too, not only surfaces
-  std::vector<char> immovable;        // per slot: a surface or a driven body (no pair of two of them)
-  std::vector<Geo> geo;               // per slot
-  std::vector<Vec3> surfaceHalfAabb;  // per surface: half extents of its world AABB
+  int nBodySlots = 0;             // slots [0, nBodySlots): bodies that meet something; then surfaces
+  std::vector<int> slotIndex;     // slot -> body or surface index
+  std::vector<int> bodySlot;      // body index -> slot, -1 when it meets nothing
+  std::vector<char> meetsBodies;  // per body slot: pairs with other bodies too, not only surfaces
+  std::vector<char> immovable;    // per slot: a surface or a driven body (no pair of two of them)
+  // body pairs that a joint joins without "collide": their contacts are not detected
+  std::vector<std::pair<int, int>> jointPairs;                  // (lower, higher) body index, sorted
+  std::vector<Geo> geo;                                         // per slot
+  std::vector<Vec3> surfaceHalfAabb;                            // per surface: half extents of its world AABB
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;  // per slot
   // per slot: its FCL object has this step's pose. Most pairs of a pile end in the
   // separating-axis test, so FCL's objects are placed only when a pair reaches FCL.
@@ -549,6 +551,10 @@ struct CollisionDetector::Impl {
   fcl::DistanceResultd distanceResult;
 
   bool isBody(int slot) const { return slot < nBodySlots; }
+  bool joined(int i, int j) const {
+    return !jointPairs.empty() &&
+           std::binary_search(jointPairs.begin(), jointPairs.end(), std::make_pair(std::min(i, j), std::max(i, j)));
+  }
 
   Vec3 pose(int slot, const std::vector<BodyState>& Y);
   void pairWithSleepers(const Sleepers& sleepers, const std::vector<BodyState>& Y, const Vec3& grow);
@@ -568,6 +574,7 @@ struct CollisionDetector::Impl {
   bool candidate(int s1, int s2, Pair& p) const {
     if (immovable[s1] && immovable[s2]) return false;
     if (isBody(s1) && isBody(s2) && !(meetsBodies[s1] && meetsBodies[s2])) return false;
+    if (isBody(s1) && isBody(s2) && joined(slotIndex[s1], slotIndex[s2])) return false;
     if (!isBody(s1) || (isBody(s2) && slotIndex[s2] < slotIndex[s1])) std::swap(s1, s2);
     p = Pair{slotIndex[s1], -1, -1, s1, s2};
     if (isBody(s2))
@@ -627,6 +634,9 @@ CollisionDetector::CollisionDetector(const WorldModel& model, const std::vector<
     d.geo.push_back(g);
   }
   d.nBodySlots = static_cast<int>(d.geo.size());
+  for (const JointConstants& j : model.joints)
+    if (j.a >= 0 && !j.collide) d.jointPairs.emplace_back(std::min(j.a, j.b), std::max(j.a, j.b));
+  std::sort(d.jointPairs.begin(), d.jointPairs.end());
   for (size_t j = 0; j < model.surfaces.size(); ++j) {
     const Surface& s = model.surfaces[j];
     Geo g;

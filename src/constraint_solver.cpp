@@ -6,90 +6,20 @@
 
 #include "contact_rules.h"
 #include "dynamics.h"
+#include "solver_rows.h"
 
 namespace rigid {
 
 using namespace constraint_solver;
+using namespace solver;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Points closer than this count as touching (a located impact leaves a gap of about
 // 1e-15 of the step's travel); farther ones are speculative.
 constexpr double kTouching = 1e-6;       // m
 constexpr double kMatchDistance = 0.01;  // m: a point within this of last step's (body a's frame) is the same
 constexpr int kMaxImpactPasses = 500;
-
-// Box2D's b2MakeSoft: a spring of natural frequency `hertz` and damping ratio zeta
-// over a step h, as the bias rate of the position error and the shares of the
-// effective mass and of the accumulated impulse in each impulse (massScale +
-// impulseScale = 1). Rigid: no bias, the whole mass.
-struct Softness {
-  double biasRate = 0.0, massScale = 1.0, impulseScale = 0.0;
-};
-
-Softness makeSoft(double hertz, double zeta, double h) {
-  const double omega = 2.0 * kPi * hertz;
-  const double a1 = 2.0 * zeta + h * omega, a2 = h * omega * a1, a3 = 1.0 / (1.0 + a2);
-  return {omega / a1, a2 * a3, a3};
-}
-
-// A body as the solver sees it; the last slot stands for every surface (no inverse
-// mass or inertia, never moves). A driven body has none either, and moves at its
-// velocities whatever the rows do.
-struct Body {
-  double invMass = 0.0;
-  Mat3 invInertia = Mat3::Zero();             // 1/(kg m^2), world frame, at the step's start
-  Vec3 v = Vec3::Zero(), w = Vec3::Zero();    // velocities now
-  Vec3 v0 = Vec3::Zero(), w0 = Vec3::Zero();  // at the step's start
-  Vec3 dv = Vec3::Zero(), dw = Vec3::Zero();  // the applied forces' velocity change in a sub-step
-  Vec3 moved = Vec3::Zero();                  // m, since the step's start
-  Vec3 turned = Vec3::Zero();                 // rad, the sub-steps' rotations h omega, summed
-  Quat q0 = Quat::Identity(), q = Quat::Identity();
-  // some row gave it an impulse: else the integrator's free motion stands (its order,
-  // not the sub-steps' first order, for a body that only comes within the margin)
-  bool pushed = false;
-  // A driven body: the impulse the rows gave it and its moment about its centre (N s,
-  // N m s), which nothing else records (its velocities do not change).
-  bool driven = false;
-  Vec3 felt = Vec3::Zero(), feltMoment = Vec3::Zero();
-};
-
-// One direction of a row: an impulse lambda acts +lambda along it on b, -lambda on a.
-struct Jacobian {
-  Vec3 linear = Vec3::Zero();
-  Vec3 angularA = Vec3::Zero(), angularB = Vec3::Zero();
-  Vec3 spinA = Vec3::Zero(), spinB = Vec3::Zero();  // I^-1 angular: the spin per unit impulse
-  // m/s, the velocity along it of B's material beyond B's own motion: a belt's, on a
-  // friction tangent (frictionJacobians); zero on every other row
-  double drift = 0.0;
-};
-
-Jacobian jacobian(const Body& A, const Body& B, const Vec3& linear, const Vec3& angularA, const Vec3& angularB) {
-  return {linear, angularA, angularB, A.invInertia * angularA, B.invInertia * angularB, 0.0};
-}
-
-// The coupling of two directions through the bodies' masses: J_x M^-1 J_y^T.
-double coupling(const Body& A, const Body& B, const Jacobian& x, const Jacobian& y) {
-  return (A.invMass + B.invMass) * x.linear.dot(y.linear) + x.angularA.dot(y.spinA) + x.angularB.dot(y.spinB);
-}
-
-// The relative velocity of a row's two sides along it: B's material moves at B's motion
-// plus the row's drift (a belt's, Manifold::belt).
-double velocityAlong(const Body& A, const Body& B, const Jacobian& j) {
-  return j.linear.dot(B.v - A.v) + j.angularB.dot(B.w) - j.angularA.dot(A.w) + j.drift;
-}
-
-void applyImpulse(Body& A, Body& B, const Jacobian& j, double lambda) {
-  if (lambda == 0.0) return;
-  A.pushed = B.pushed = true;
-  A.v -= lambda * A.invMass * j.linear;
-  A.w -= lambda * j.spinA;
-  B.v += lambda * B.invMass * j.linear;
-  B.w += lambda * j.spinB;
-  if (A.driven) A.felt -= lambda * j.linear, A.feltMoment -= lambda * j.angularA;
-  if (B.driven) B.felt += lambda * j.linear, B.feltMoment += lambda * j.angularB;
-}
 
 // One contact point's normal row.
 struct Point {
@@ -150,6 +80,7 @@ struct ConstraintScratch {
   std::vector<Point> points;
   std::vector<Manifold> manifolds;
   std::vector<char> used;  // warm start: memory points already matched
+  std::vector<int> held;   // the bodies the extra rows (joints) hold
   int staticSlot() const { return static_cast<int>(bodies.size()) - 1; }
 };
 
@@ -175,6 +106,7 @@ void prepareBody(const WorldModel& model, const WorldData& data, double hSub, in
     b.driven = true;
     b.v = b.v0 = aux.V;
     b.w = b.w0 = aux.omega;
+    b.x0 = y.X;
     b.q = b.q0 = y.q.normalized();
     return;
   }
@@ -185,6 +117,7 @@ void prepareBody(const WorldModel& model, const WorldData& data, double hSub, in
   b.w = b.w0 = aux.omega;
   b.dv = hSub * b.invMass * aux.F;
   b.dw = hSub * (b.invInertia * aux.T);
+  b.x0 = y.X;
   b.q = b.q0 = y.q.normalized();
 }
 
@@ -640,7 +573,7 @@ void countTouching(const std::vector<Contact>& contacts, std::vector<int>& count
 // The step's rows and the impacts at its start (both entry points begin so).
 Solver& prepareAndAnswerImpacts(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
                                 double h, ConstraintScratchPtr& scratch, ContactImpulses& impulses,
-                                ConstraintReport& report) {
+                                ConstraintReport& report, ExtraRows* extra = nullptr) {
   const size_t n = data.Y.size();
   impulses.linear.assign(n, Vec3::Zero());
   impulses.angular.assign(n, Vec3::Zero());
@@ -651,6 +584,14 @@ Solver& prepareAndAnswerImpacts(const WorldModel& model, const WorldData& data, 
   s.involved.assign(n, 0);
   s.moving.clear();
   prepareRows(model, data, contacts, h, s);
+  if (extra) {  // a body that a joint holds moves as the solve says, whatever its rows' impulses
+    s.held.clear();
+    extra->prepare(model, data, h, s.held);
+    for (int i : s.held) {
+      prepareBody(model, data, h / kSubsteps, i, s);
+      s.bodies[i].pushed = true;
+    }
+  }
   report.points = static_cast<int>(s.points.size());
   report.impactPasses = answerImpacts(s, restingNormalSpeed(model.gravity, model.maxStep), h, impulses);
   return s;
@@ -670,21 +611,28 @@ ConstraintReport answerImpactsNow(const WorldModel& model, const WorldData& data
 ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
                                   double h, const std::vector<ContactMemory>& remembered,
                                   std::vector<ContactMemory>& stored, std::vector<BodyState>& next,
-                                  std::vector<int>& count, ConstraintScratchPtr& scratch, ContactImpulses& impulses) {
+                                  std::vector<int>& count, ConstraintScratchPtr& scratch, ContactImpulses& impulses,
+                                  ExtraRows* extra) {
   ConstraintReport report;
   countTouching(contacts, count);
-  Solver& s = prepareAndAnswerImpacts(model, data, contacts, h, scratch, impulses, report);
+  Solver& s = prepareAndAnswerImpacts(model, data, contacts, h, scratch, impulses, report, extra);
   const double restingSpeed = restingNormalSpeed(model.gravity, model.maxStep);
   warmStart(remembered, s);
   const double hSub = h / kSubsteps;
   for (int k = 0; k < kSubsteps; ++k) {
     integrateVelocities(s);
+    if (extra) extra->warmStart(s.bodies);
     applyWarmStart(s);
+    if (extra) extra->solve(s.bodies, hSub, true);
     solvePass(s, hSub, true);
     integratePositions(s, hSub);
     followBodies(s);
-    for (int pass = 0; pass < kRelaxPasses; ++pass) solvePass(s, hSub, false);
+    for (int pass = 0; pass < kRelaxPasses; ++pass) {
+      if (extra) extra->solve(s.bodies, hSub, false);
+      solvePass(s, hSub, false);
+    }
     addSubstepImpulses(s);
+    if (extra) extra->endSubstep();
   }
   store(s, std::max(1e-5, 0.01 * restingSpeed), stored);
   pushSurfaces(s, impulses);

@@ -14,7 +14,9 @@
 // by mu lambda_N on an ellipsoid whose twist axis is scaled by the patch radius). On a
 // conveyor, the belt's velocity (WorldData::beltVelocity, its part along the contact
 // plane) is that of the surface's material: friction acts against the slip relative to it.
-// Bodies outside every island are left to the integrator.
+// Joints join as rows beside the contacts (ExtraRows, joint_rows.h), solved first in
+// each pass so that contacts have the last word. Bodies that neither a contact nor a
+// joint holds are left to the integrator.
 #pragma once
 
 #include <memory>
@@ -22,6 +24,7 @@
 
 #include "collision_detection.h"
 #include "contact_memory.h"
+#include "solver_rows.h"
 #include "world.h"
 
 namespace rigid {
@@ -82,11 +85,13 @@ struct ContactImpulses {
 // `impulses` takes the step's contact impulses; `count` gains each body's touching
 // points. The contacts' stiffness and resting speed are solver.step's (model.maxStep),
 // whatever h is: a step split at a located impact (h down to 1e-15 of it), or cut into
-// sub-steps, keeps the same springs, not ones stiffer by (maxStep/h)^2.
+// sub-steps, keeps the same springs, not ones stiffer by (maxStep/h)^2. `extra` (or
+// null): rows beyond the contacts', the joints'.
 ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data, const std::vector<Contact>& contacts,
                                   double h, const std::vector<ContactMemory>& remembered,
                                   std::vector<ContactMemory>& stored, std::vector<BodyState>& next,
-                                  std::vector<int>& count, ConstraintScratchPtr& scratch, ContactImpulses& impulses);
+                                  std::vector<int>& count, ConstraintScratchPtr& scratch, ContactImpulses& impulses,
+                                  ExtraRows* extra = nullptr);
 
 // The impacts stage alone, at the instant of data.Y: a step that ends at a located
 // bouncing impact and returns there (FMI 3's early return) answers it before it

@@ -1,6 +1,7 @@
 // Islands: the sets of bodies that the step's contacts join (a surface or a driven
 // body joins none), found once a step by union-find, for sleep (sleep.h) to put to
-// rest or keep awake whole. The constraint solver needs none: it sweeps every awake
+// rest or keep awake whole. A joint joins its two bodies' islands, and an island that
+// holds a joint never sleeps. The constraint solver needs none: it sweeps every awake
 // contact in one order, as Box2D v3's solver does (its islands too serve sleep alone).
 #pragma once
 

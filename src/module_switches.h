@@ -14,12 +14,19 @@
 #ifndef RIGID_WITH_COLLISIONS
 #define RIGID_WITH_COLLISIONS 1
 #endif
+#ifndef RIGID_WITH_JOINTS
+#define RIGID_WITH_JOINTS 1
+#endif
 #if RIGID_WITH_COLLISIONS != RIGID_WITH_SURFACES
 #error "surfaces and collisions come together (modules.h)"
+#endif
+#if RIGID_WITH_JOINTS && !RIGID_WITH_COLLISIONS
+#error "joints come with collisions (modules.h)"
 #endif
 
 namespace rigid::modules {
 constexpr bool kSurfaces = RIGID_WITH_SURFACES;
 constexpr bool kMedia = RIGID_WITH_MEDIA;
 constexpr bool kCollisions = RIGID_WITH_COLLISIONS;
+constexpr bool kJoints = RIGID_WITH_JOINTS;
 }  // namespace rigid::modules

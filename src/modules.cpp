@@ -12,6 +12,7 @@ unsigned modulesNeeded(const WorldModel& model) {
   // FCL answers body-body contacts and every body on a surface (a static box of the
   // contact solve): surfaces come with the collision module.
   if (colliding >= 2 || !model.surfaces.empty()) m |= kModuleCollisions | kModuleSurfaces;
+  if (!model.joints.empty()) m |= kModuleJoints | kModuleCollisions | kModuleSurfaces;
   return m;
 }
 
@@ -23,6 +24,7 @@ std::string moduleNames(unsigned modules) {
   add(kModuleSurfaces, "surfaces");
   add(kModuleMedia, "media");
   add(kModuleCollisions, "collisions");
+  add(kModuleJoints, "joints");
   return s.empty() ? "none" : s;
 }
 

@@ -15,10 +15,12 @@ enum ModuleBits : unsigned {
   kModuleSurfaces = 1u << 0,    // surfaces, as static boxes of the contact solve (with collisions)
   kModuleMedia = 1u << 1,       // medium: buoyancy, drag
   kModuleCollisions = 1u << 2,  // collision_detection (FCL), constraint_solver
+  kModuleJoints = 1u << 3,      // joint_rows: the joints' rows in the constraint solver (with collisions)
 };
 
 // The modules a world needs. Surfaces and collisions come together: a surface is a
-// static box of the contact solve, and body pairs meet surfaces through it.
+// static box of the contact solve, and body pairs meet surfaces through it. Joints come
+// with both: their rows are the constraint solver's, which the collision module holds.
 unsigned modulesNeeded(const WorldModel& model);
 
 // The modules compiled into this binary.

@@ -12,126 +12,14 @@
 #include <set>
 #include <sstream>
 
+#include "scene_reader.h"
+
 namespace rigid {
 
 using json = nlohmann::json;
+using namespace scene_reader;
 
 namespace {
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.15g", v);
-  return buf;
-}
-
-[[noreturn]] void fail(const std::string& path, const std::string& what) { throw SceneError(path + ": " + what); }
-
-std::string join(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
-
-bool isIdentifier(const std::string& s) {
-  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
-  for (char c : s)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
-  return true;
-}
-
-// Reads the fields of one JSON object; every key it does not know is refused, so that
-// a misspelt field is reported instead of silently taking its default (an empty list
-// of known keys reads an object whose keys were checked before).
-class Object {
- public:
-  Object(const json& j, std::string path, std::initializer_list<const char*> known) : j_(j), path_(std::move(path)) {
-    if (!j.is_object()) fail(path_.empty() ? "scene" : path_, "must be a JSON object");
-    if (known.size() == 0) return;  // fields already checked by another reader
-    std::set<std::string> allowed(known.begin(), known.end());
-    for (const auto& item : j.items()) {
-      if (!allowed.count(item.key())) {
-        std::string list;
-        for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
-        fail(join(path_, item.key()), "unknown field (known: " + list + ")");
-      }
-    }
-  }
-
-  bool has(const char* key) const { return j_.contains(key); }
-  const json& at(const char* key) const { return j_.at(key); }
-  std::string path(const char* key) const { return join(path_, key); }
-
-  double number(const char* key, const double* fallback = nullptr) const {
-    if (!has(key)) {
-      if (fallback) return *fallback;
-      fail(path(key), "is required");
-    }
-    return toNumber(at(key), path(key));
-  }
-  double number(const char* key, double fallback) const { return number(key, &fallback); }
-
-  std::string string(const char* key, const char* fallback = nullptr) const {
-    if (!has(key)) {
-      if (fallback) return fallback;
-      fail(path(key), "is required");
-    }
-    if (!at(key).is_string()) fail(path(key), "must be a string");
-    return at(key).get<std::string>();
-  }
-
-  bool boolean(const char* key, bool fallback) const {
-    if (!has(key)) return fallback;
-    if (!at(key).is_boolean()) fail(path(key), "must be true or false");
-    return at(key).get<bool>();
-  }
-
-  Eigen::VectorXd vector(const char* key, int n, const Eigen::VectorXd& fallback) const {
-    if (!has(key)) return fallback;
-    return toVector(at(key), path(key), n);
-  }
-  Vec3 vec3(const char* key, const Vec3& fallback) const { return vector(key, 3, fallback); }
-
-  static double toNumber(const json& v, const std::string& path) {
-    if (!v.is_number()) fail(path, "must be a number");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(path, "must be finite, got " + num(x));
-    return x;
-  }
-
-  static Eigen::VectorXd toVector(const json& v, const std::string& path, int n) {
-    if (!v.is_array() || static_cast<int>(v.size()) != n)
-      fail(path, "must be an array of " + std::to_string(n) + " numbers");
-    Eigen::VectorXd out(n);
-    for (int i = 0; i < n; ++i) out[i] = toNumber(v[i], path + "[" + std::to_string(i) + "]");
-    return out;
-  }
-
- private:
-  const json& j_;
-  std::string path_;
-};
-
-double positive(const Object& o, const char* key, const double* fallback = nullptr) {
-  const double v = o.number(key, fallback);
-  if (!(v > 0.0)) fail(o.path(key), "must be > 0, got " + num(v));
-  return v;
-}
-
-double inRange(const Object& o, const char* key, double fallback, double lo, double hi) {
-  const double v = o.number(key, fallback);
-  if (v < lo || v > hi) fail(o.path(key), "must be in [" + num(lo) + ", " + num(hi) + "], got " + num(v));
-  return v;
-}
-
-std::string identifier(const Object& o, const char* key, const char* fallback = nullptr) {
-  const std::string s = o.string(key, fallback);
-  if (!isIdentifier(s)) fail(o.path(key), "must be a C identifier ([A-Za-z_][A-Za-z0-9_]*), got \"" + s + "\"");
-  return s;
-}
-
-Quat unitQuaternion(const Object& o, const char* key) {
-  const Eigen::VectorXd v = o.vector(key, 4, Eigen::Vector4d(1, 0, 0, 0));
-  const double norm = v.norm();
-  if (std::abs(norm - 1.0) > 1e-6)
-    fail(o.path(key), "must be a unit quaternion (w, x, y, z) within 1e-6, got |q| = " + num(norm));
-  return Quat(v[0], v[1], v[2], v[3]).normalized();
-}
 
 // Coulomb coefficients: staticFriction >= kineticFriction >= 0.
 void friction(const Object& o, double& mus, double& muk) {
@@ -394,21 +282,22 @@ std::vector<T> readList(const Object& o, const char* key, bool required, Read re
   return out;
 }
 
-// Bodies, surfaces and media name their FMU variables alike (NAME.field: a body's
+// Bodies, surfaces, media and joints name their FMU variables alike (NAME.field: a body's
 // staticFriction and a surface's would be one variable), so no name is used twice
-// across the three lists.
+// across the four lists.
 void checkOneNameSpace(const WorldModel& m) {
   std::map<std::string, std::string> owner;  // name -> where it was first given
   auto claim = [&](const std::string& name, const std::string& where) {
     const auto [it, fresh] = owner.emplace(name, where);
     if (!fresh)
       fail(where + ".name", "\"" + name + "\" is also the name of " + it->second +
-                                "; bodies, surfaces and media share one name space (their FMU variables are "
+                                "; bodies, surfaces, media and joints share one name space (their FMU variables are "
                                 "NAME.field)");
   };
   for (size_t i = 0; i < m.bodies.size(); ++i) claim(m.bodies[i].name, "bodies[" + std::to_string(i) + "]");
   for (size_t i = 0; i < m.surfaces.size(); ++i) claim(m.surfaces[i].name, "surfaces[" + std::to_string(i) + "]");
   for (size_t i = 0; i < m.media.size(); ++i) claim(m.media[i].name, "media[" + std::to_string(i) + "]");
+  for (size_t i = 0; i < m.joints.size(); ++i) claim(m.joints[i].name, "joints[" + std::to_string(i) + "]");
 }
 
 // The FMU variables a body chooses (its "outputs" and "inputs"); a driven body's
@@ -449,7 +338,7 @@ Scene parseScene(const std::string& text) {
   } catch (const json::parse_error& e) {
     throw SceneError(std::string("scene: not valid JSON: ") + e.what());
   }
-  Object o(j, "", {"name", "gravity", "solver", "bodies", "surfaces", "media"});
+  Object o(j, "", {"name", "gravity", "solver", "bodies", "surfaces", "media", "joints"});
   Scene scene;
   WorldModel& m = scene.model;
   m.name = identifier(o, "name", "scene");
@@ -489,6 +378,7 @@ Scene parseScene(const std::string& text) {
     scene.variables.push_back(variablesOf(o.at("bodies")[i], "bodies[" + std::to_string(i) + "]", m.bodies[i]));
   readSurfaces(o, scene);
   m.media = readList<Medium>(o, "media", false, readMedium);
+  readJoints(o, scene);
   checkOneNameSpace(m);
   scene.canonicalJson = j.dump();
   return scene;

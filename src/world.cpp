@@ -15,6 +15,7 @@
 #include "collision_cache.h"
 #include "constraint_solver.h"
 #include "contact_rules.h"
+#include "joint_rows.h"
 #include "module_switches.h"
 #include "sleep.h"
 
@@ -22,7 +23,7 @@ namespace rigid {
 
 unsigned modulesBuilt() {
   return (modules::kSurfaces ? kModuleSurfaces : 0u) | (modules::kMedia ? kModuleMedia : 0u) |
-         (modules::kCollisions ? kModuleCollisions : 0u);
+         (modules::kCollisions ? kModuleCollisions : 0u) | (modules::kJoints ? kModuleJoints : 0u);
 }
 
 WorldData initialData(const WorldModel& model) {
@@ -52,7 +53,8 @@ WorldData initialData(const WorldModel& model) {
     }
     const long colliding = std::count(collides.begin(), collides.end(), true);
     const long onSurfaces = model.surfaces.empty() ? 0 : std::count(meetsSurfaces.begin(), meetsSurfaces.end(), true);
-    if (colliding >= 2 || onSurfaces >= 1) {
+    // (joints are rows of the contacts' solver: a jointed world has its cache)
+    if (colliding >= 2 || onSurfaces >= 1 || !model.joints.empty()) {
       d.collision = std::make_shared<CollisionCache>(CollisionDetector(model, collides, meetsSurfaces));
       for (size_t i = 0; i < model.bodies.size(); ++i) {
         const Shape& shape = model.bodies[i].shape;
@@ -82,12 +84,18 @@ WorldData initialData(const WorldModel& model) {
   d.audit.energy.resize(n);
   for (size_t i = 0; i < n; ++i) d.audit.energy[i] = d.aux[i].omega.dot(d.Y[i].L);
   d.audit.reference = d.audit.energy;
+  if constexpr (modules::kJoints) {
+    startJoints(model, d);
+    if (d.collision && !model.joints.empty()) d.collision->joints = makeJointRows(model);
+  }
   return d;
 }
 
 void clearContactLoads(WorldData& data) {
   WorldData::ContactLoads& loads = data.contactLoads;
-  for (auto* v : {&loads.impulse, &loads.angularImpulse, &loads.surfaceImpulse}) v->assign(v->size(), Vec3::Zero());
+  for (auto* v : {&loads.impulse, &loads.angularImpulse, &loads.surfaceImpulse, &data.joints.impulse,
+                  &data.joints.angularImpulse})
+    v->assign(v->size(), Vec3::Zero());
   loads.duration = 0.0;
 }
 
@@ -456,13 +464,14 @@ int moveBodies(StepContext& s, CollisionCache& c, double tau, std::vector<BodySt
   if (steps == 0) return 0;
   StageTimer timer(s.data, Stage::Solve);
   for (int i : s.data.scratch.awake) s.data.contacts[i] = 0;  // a sleeping body keeps its count
-  if (c.stepContacts.empty()) {                               // nothing to solve, nothing to remember
+  if (c.stepContacts.empty() && !c.joints) {                  // nothing to solve, nothing to remember
     c.impulses.clear();
     c.storedMemory.clear();
     return steps;
   }
-  const ConstraintReport report = solveConstraints(s.model, s.data, c.stepContacts, tau, s.data.contactMemory,
-                                                   c.storedMemory, next, s.data.contacts, c.constraints, c.impulses);
+  const ConstraintReport report =
+      solveConstraints(s.model, s.data, c.stepContacts, tau, s.data.contactMemory, c.storedMemory, next,
+                       s.data.contacts, c.constraints, c.impulses, modules::kJoints ? c.joints.get() : nullptr);
   if (s.data.profiling) {
     ++s.data.profile.solves;
     s.data.profile.points += report.points;
@@ -529,7 +538,14 @@ StepResult commitStep(StepContext& s, CollisionCache& c, int steps, std::vector<
   std::swap(c.contacts, c.stepContacts);                           // the step's contacts, for sleep
   if (steps > 0) std::swap(s.data.contactMemory, c.storedMemory);  // else no solve stored any
   if (steps == 0) return failed(-1);
-  return commit(s.model, s.data, next, s.h);
+  const StepResult r = commit(s.model, s.data, next, s.h);
+  if constexpr (modules::kJoints) {
+    if (r.ok && c.joints) {  // the last solve's joint rows are the step's
+      commitJoints(*c.joints, s.data);
+      measureJoints(s.model, s.data);
+    }
+  }
+  return r;
 }
 
 // One internal step with contacts, as its stages: collide, integrate and solve

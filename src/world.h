@@ -10,6 +10,7 @@
 #include "contact_memory.h"
 #include "drive.h"
 #include "integrator.h"
+#include "joint.h"
 #include "medium.h"
 #include "sleep_state.h"
 #include "surface.h"
@@ -33,6 +34,7 @@ struct WorldModel {
   std::vector<BodyConstants> bodies;
   std::vector<Surface> surfaces;
   std::vector<Medium> media;
+  std::vector<JointConstants> joints;
 };
 
 // Work buffers of the integrators, sized once so that a step allocates nothing. They
@@ -121,6 +123,8 @@ struct WorldData {
     std::vector<Vec3> impulse, angularImpulse, surfaceImpulse;
     double duration = 0.0;  // s
   } contactLoads;
+  // The joints' memory, inputs, reactions and coordinates (joint.h). Partly FMU state.
+  JointData joints;
   Scratch scratch;
   bool profiling = false;
   StepProfile profile;
@@ -130,7 +134,7 @@ struct WorldData {
 // belts' velocities (the scene's, Surface::beltVelocity).
 WorldData initialData(const WorldModel& model);
 
-// Zeroes WorldData::contactLoads.
+// Zeroes WorldData::contactLoads and the joints' reaction sums.
 void clearContactLoads(WorldData& data);
 
 // Refreshes V, R and omega of the current Y (outputs, the energy audit, the stability

@@ -360,9 +360,9 @@ TEST(Parameters, MaterialAndFluidConstantsAreTunableParameters) {
   EXPECT_EQ(vars.back().name, "floor.force[3]");
   EXPECT_LT(find(vars, "b.contacts").vr, find(vars, "b.staticFriction").vr);
   // mu_k above mu_s: refused when the pair takes effect, naming both
-  EXPECT_EQ(rigidfmu::frictionConflict(model), "");
+  EXPECT_EQ(rigidfmu::parameterConflict(model), "");
   model.surfaces[0].kineticFriction = 0.5;
-  EXPECT_EQ(rigidfmu::frictionConflict(model),
+  EXPECT_EQ(rigidfmu::parameterConflict(model),
             "floor.kineticFriction: must be <= floor.staticFriction (0.25), got 0.5");
 }
 

@@ -116,7 +116,7 @@ TEST(Scene, TopLevelNotAnObject) {
 
 TEST(Scene, UnknownTopLevelField) {
   EXPECT_SCENE_ERROR(sceneWith("", R"("gravitee": [0, 0, 0], )"),
-                     "gravitee: unknown field (known: name, gravity, solver, bodies, surfaces, media)");
+                     "gravitee: unknown field (known: name, gravity, solver, bodies, surfaces, media, joints)");
 }
 
 TEST(Scene, UnknownBodyField) {
@@ -165,16 +165,16 @@ TEST(Scene, SleepRules) {
 
 // Their FMU variables are NAME.field: a body and a surface named alike would share
 // NAME.staticFriction.
-TEST(Scene, BodiesSurfacesAndMediaShareOneNameSpace) {
+TEST(Scene, BodiesSurfacesMediaAndJointsShareOneNameSpace) {
   const std::string floorNamedB = R"("surfaces": [{"name": "b", "min": [-1, -1, -1], "max": [1, 1, 0]}], )";
   EXPECT_SCENE_ERROR(sceneWith("", floorNamedB),
-                     "surfaces[0].name: \"b\" is also the name of bodies[0]; bodies, surfaces and media share one "
-                     "name space (their FMU variables are NAME.field)");
+                     "surfaces[0].name: \"b\" is also the name of bodies[0]; bodies, surfaces, media and "
+                     "joints share one name space (their FMU variables are NAME.field)");
   const std::string poolNamedFloor = R"("surfaces": [{"name": "floor", "min": [-1, -1, -1], "max": [1, 1, 0]}],
       "media": [{"name": "floor", "min": [-1, -1, 0], "max": [1, 1, 1]}], )";
   EXPECT_SCENE_ERROR(sceneWith("", poolNamedFloor),
-                     "media[0].name: \"floor\" is also the name of surfaces[0]; bodies, surfaces and media share one "
-                     "name space (their FMU variables are NAME.field)");
+                     "media[0].name: \"floor\" is also the name of surfaces[0]; bodies, surfaces, media and "
+                     "joints share one name space (their FMU variables are NAME.field)");
 }
 
 TEST(Scene, LoadPoints) {

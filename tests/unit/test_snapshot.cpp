@@ -256,9 +256,9 @@ TEST(Snapshot, EveryFieldComesBackFromTheBytesIntoItsOwnPlace) {
 // must be refused, not misread) and pin the new size and hash here.
 TEST(Snapshot, TheBytesAreThoseOfTheFormatVersion) {
   const std::vector<char> bytes = rigidfmu::serialize(filled(sceneModel()), kGuid);
-  EXPECT_EQ(rigidfmu::kSnapshotVersion, 9u);
+  EXPECT_EQ(rigidfmu::kSnapshotVersion, 10u);
   EXPECT_EQ(bytes.size(), 2070u);
-  EXPECT_EQ(hashOf(bytes), 0x836126361584adbull);
+  EXPECT_EQ(hashOf(bytes), 0x24c930df8f963a64ull);
 }
 
 // A conveyor's belt velocity (its start value, its value in the run and its rate) comes
@@ -330,12 +330,12 @@ TEST(Snapshot, BytesOfAnotherSizeFormatOrSceneAreRefused) {
   Snapshot target = fresh(model);
   std::vector<char> shorter(bytes.begin(), bytes.end() - 1), longer = bytes, newer = bytes;
   longer.push_back(0);
-  newer[8] = 10;  // the version's low byte
+  newer[8] = 11;  // the version's low byte
   EXPECT_EQ(readInto(target, shorter), "the serialized state has " + std::to_string(bytes.size() - 1) +
                                            " bytes, not the size of a state of this scene");
   EXPECT_EQ(readInto(target, longer), "the serialized state has " + std::to_string(bytes.size() + 1) +
                                           " bytes, not the size of a state of this scene");
-  EXPECT_EQ(readInto(target, newer), "state format version 10, this FMU reads version 9");
+  EXPECT_EQ(readInto(target, newer), "state format version 11, this FMU reads version 10");
   EXPECT_EQ(readInto(target, bytes, "{other}"), "the state is of another scene (GUID " + kGuid + ", this FMU {other})");
   EXPECT_EQ(readInto(target, std::vector<char>(bytes.begin(), bytes.begin() + 5)),
             "the serialized state is too short (5 bytes)");

@@ -25,7 +25,7 @@ import zipfile
 from dataclasses import dataclass
 
 from rigidfmu import native as native_module
-from rigidfmu.errors import PackagingError, SceneError
+from rigidfmu.errors import NativeError, PackagingError, SceneError
 
 # Libraries every Linux machine has (the C and C++ runtime), never carried; nor the
 # sanitizer runtimes, which a sanitizer build's host process preloads.
@@ -90,10 +90,12 @@ def package(scene: pathlib.Path, out: pathlib.Path, native: native_module.Native
     if fmi not in (2, 3):
         raise PackagingError(f"FMI version {fmi}: 2 or 3")
     described = describe(scene, native, fmi)
-    library = native.library(described.modules, fmi)
-    if not library.exists():
-        raise PackagingError(f"no binary for modules {described.modules}: {library}")
-    dll = native.win64_library(described.modules, fmi)
+    try:
+        variant = native.variant(described.modules, fmi)
+    except NativeError as e:
+        raise PackagingError(str(e)) from e
+    library = native.library(variant, fmi)
+    dll = native.win64_library(variant, fmi)
     if dll is not None and not dll.exists():
         raise PackagingError(f"no win64 binary for modules {described.modules}: {dll}")
     with tempfile.TemporaryDirectory(prefix="rigidfmu-fmu-") as stage:

@@ -31,9 +31,26 @@ class Native:
     def describe(self) -> pathlib.Path:
         return self.directory / "rigidfmu-describe"
 
+    def built_variants(self, fmi: int = 2) -> list[int]:
+        """The module masks this installation has a library of (FMI version `fmi`)."""
+        prefix = f"rigidfmu_fmi{fmi}_"
+        names = (p.name.removeprefix(prefix).removesuffix(".so") for p in self.directory.glob(prefix + "*.so"))
+        return sorted(int(n) for n in names if n.isdigit())
+
+    def variant(self, modules: str, fmi: int = 2) -> str:
+        """The mask of the smallest built library that has the modules `modules` (the
+        describe tool's mask): the scene's own combination where it is built (a full
+        build has every one), else the superset with the fewest modules (a build of the
+        top combination only, as the sanitizer's). NativeError when none has them."""
+        needed = int(modules)
+        covering = [mask for mask in self.built_variants(fmi) if mask & needed == needed]
+        if not covering:
+            raise NativeError(f"no FMU library in {self.directory} has the modules {modules} (FMI {fmi})")
+        return str(min(covering, key=lambda mask: (bin(mask).count("1"), mask)))
+
     def library(self, modules: str, fmi: int = 2) -> pathlib.Path:
-        """The FMU library for a module mask (the describe tool's `modules`) and FMI
-        version (2 or 3)."""
+        """The FMU library for a module mask (the describe tool's `modules`, or a
+        variant's) and FMI version (2 or 3)."""
         return self.directory / f"rigidfmu_fmi{fmi}_{modules}.so"
 
     def win64_library(self, modules: str, fmi: int = 2) -> pathlib.Path | None:

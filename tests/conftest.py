@@ -45,6 +45,41 @@ def fmu_of():
     return build_fmu
 
 
+# Under the sanitizers (scripts/sanitize.sh) a physics sweep runs its first case only.
+# `@pytest.mark.sweep("name", ...)` names the parameters of a parametrized test that only
+# change numbers (a step, a mass ratio, an angle), not the code a case runs; a parameter
+# that picks a method, a shape or a branch (restitution zero or not) is not named, and all
+# of its values run. The plain run runs every case.
+SANITIZED = os.environ.get("RIGIDFMU_SANITIZED") == "1"
+SWEEP_SKIP = ("sweep: under the sanitizers the first value of {} only (the same code with other "
+              "numbers; the plain run runs them all)")
+
+
+def first_value(item, name):
+    """The first value that the test's parametrize gives the parameter `name`."""
+    for marker in item.iter_markers("parametrize"):
+        names = marker.args[0].split(",") if isinstance(marker.args[0], str) else list(marker.args[0])
+        names = [n.strip() for n in names]
+        if name in names:
+            first = marker.args[1][0]
+            if hasattr(first, "marks"):  # a pytest.param(...)
+                first = first.values if len(names) > 1 else first.values[0]
+            return first[names.index(name)] if len(names) > 1 else first
+    raise pytest.UsageError(f"{item.nodeid}: sweep({name!r}) names no parameter of the test")
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        marker = item.get_closest_marker("sweep")
+        if marker is None:
+            continue
+        params = getattr(getattr(item, "callspec", None), "params", {})
+        if not marker.args or any(name not in params for name in marker.args):
+            raise pytest.UsageError(f"{item.nodeid}: sweep{marker.args} must name parameters of the test")
+        if SANITIZED and any(params[name] != first_value(item, name) for name in marker.args):
+            item.add_marker(pytest.mark.skip(reason=SWEEP_SKIP.format(", ".join(marker.args))))
+
+
 @pytest.hookimpl(tryfirst=True)
 def pytest_runtest_setup(item):
     """Every test, and every fixture it sets up, starts in the project's root. fmpy

@@ -26,6 +26,7 @@ def drop_scene(h, xi=0.8, h0=1.0):
     return s
 
 
+@pytest.mark.sweep("h")
 @pytest.mark.parametrize("h", [1e-3, 1e-2])
 def test_bounce_apex_heights_follow_restitution_at_any_step(fmu_of, h):
     """Apex n = e^(2n) h0 within 1 % (never above) for n = 1..4, at h = 1e-3 and 1e-2;

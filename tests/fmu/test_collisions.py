@@ -19,10 +19,10 @@ def two_spheres(name, m1, m2, v1, v2, xi, gap=0.5, **b2):
     return scenes.scene(name, [a, b], gravity=(0, 0, 0))
 
 
-CASES = [(xi, ratio) for xi in (0.0, 0.5, 1.0) for ratio in (1.0, 1e3, 1e6)]
-
-
-@pytest.mark.parametrize("xi,ratio", CASES)
+# restitution zero or not takes another branch of the impulse; the mass ratio is numbers
+@pytest.mark.sweep("ratio")
+@pytest.mark.parametrize("ratio", (1.0, 1e3, 1e6))
+@pytest.mark.parametrize("xi", (0.0, 0.5, 1.0))
 def test_central_impact_matches_closed_form(fmu_of, xi, ratio):
     m1, m2, v1, v2 = 1.0, ratio, 2.0, -0.5
     s = two_spheres(f"Central{int(xi * 10)}_{int(np.log10(ratio))}", m1, m2, v1, v2, xi)

@@ -48,6 +48,7 @@ def test_holds_below_static_limit(fmu_of, method):
     assert np.max(np.linalg.norm(x[1:] - x[1], axis=1)) < 1e-9
 
 
+@pytest.mark.sweep("theta")
 @pytest.mark.parametrize("theta", [math.atan(0.5 + 1e-3), math.radians(30.0)])
 def test_slides_with_kinetic_friction_above_static_limit(fmu_of, theta):
     """tan(theta) > mu_s: it slides with a = g (sin theta - mu_k cos theta), within 0.5 %
@@ -80,6 +81,7 @@ def flat_scene(name, v0=0.0, muk=0.3, half=5.0):
     return s
 
 
+@pytest.mark.sweep("v0")
 @pytest.mark.parametrize("v0", [1.0, 3.0])
 def test_sliding_box_stops_after_closed_form_distance_and_stays(fmu_of, v0):
     r = simulate_fmu(str(fmu_of(flat_scene(f"Stop{int(v0)}", v0))), stop_time=3.0,

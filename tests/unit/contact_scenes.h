@@ -23,6 +23,14 @@ using rigid::Mat3;
 using rigid::Quat;
 using rigid::Vec3;
 
+// The sanitizer build (scripts/sanitize.sh: GCC's -fsanitize=address defines the macro),
+// where a test whose size only scales the work of smaller tests' code skips.
+#ifdef __SANITIZE_ADDRESS__
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 

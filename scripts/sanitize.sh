@@ -13,18 +13,22 @@
 # it, and the plain run checks the choice of the smallest binary.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+. "$root/scripts/phase.sh"
 [ -n "${RIGIDFMU_SKIP_SETUP:-}" ] || "$root/scripts/setup.sh"
 build="${RIGIDFMU_SANITIZE_BUILD:-$root/build-asan}"
-/usr/bin/cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DRIGIDFMU_SANITIZE=ON \
-  -DRIGIDFMU_TESTS=ON -DRIGIDFMU_VARIANTS=top >/dev/null
-/usr/bin/cmake --build "$build" -j"$(nproc)" --target rigid_unit_tests rigidfmu-describe rigidfmu_fmus
+build_core() {
+  /usr/bin/cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DRIGIDFMU_SANITIZE=ON \
+    -DRIGIDFMU_TESTS=ON -DRIGIDFMU_VARIANTS=top >/dev/null
+  /usr/bin/cmake --build "$build" -j"$(nproc)" --target rigid_unit_tests rigidfmu-describe rigidfmu_fmus
+}
+phase "sanitizer build" build_core
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:detect_leaks=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
-(cd "$build" && /usr/bin/ctest --output-on-failure -j"$(nproc)")
+phase "sanitizer ctest" bash -c 'cd "$1" && /usr/bin/ctest --output-on-failure -j"$(nproc)"' - "$build"
 cd "$root"
 # tests/fmu only: tests/scripts (the reports, replay, studies, benchmarks and the package)
 # drive whole scripts, browsers and worker processes rather than the FMU's memory and run
 # in the plain suite; valgrind is left out too, it cannot run beside ASan.
-LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.so)" \
+phase "sanitizer pytest" env LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.so)" \
   ASAN_OPTIONS="halt_on_error=1:detect_leaks=0" RIGIDFMU_SANITIZED=1 RIGIDFMU_SKIP_SETUP=1 \
   RIGIDFMU_BUILD="$build" "$root/.venv/bin/python" -m pytest tests/fmu -q "$@"

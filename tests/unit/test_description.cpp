@@ -1,6 +1,7 @@
 // The FMU's variable table, modelDescription.xml and GUID of a scene.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -401,4 +402,34 @@ TEST(Parameters, ABeltVelocityIsAnInputOfTheConveyorsOnly) {
   EXPECT_EQ(rigidfmu::writeValue(x, std::numeric_limits<double>::infinity(), model, data, Phase::Running),
             "belt.beltVelocity[1]: must be finite, got inf");
   EXPECT_EQ(data.beltVelocity[1], rigid::Vec3::Zero());  // the wall has no belt
+}
+
+// Joints bring units of their own (rad, N.m/rad, N.s/m…): each Real's unit is defined in
+// the XML of both versions, for a hinge and a slider with every option.
+TEST(JointDescription, EveryJointUnitIsDefinedInTheXml) {
+  const rigid::Scene scene = rigid::parseScene(R"({
+    "name": "Joints",
+    "bodies": [
+      {"name": "a", "shape": {"type": "box", "size": [0.2, 0.2, 0.2]}, "mass": 1.0, "position": [0, 0, -1]},
+      {"name": "b", "shape": {"type": "box", "size": [0.2, 0.2, 0.2]}, "mass": 1.0, "position": [1, 0, -1]}
+    ],
+    "joints": [
+      {"name": "hinge", "type": "revolute", "bodies": ["world", "a"], "anchor": [0, 0, 0], "axis": [0, 1, 0],
+       "limits": [-1, 1], "motor": {"speed": 1, "maxTorque": 2}, "spring": {"stiffness": 3, "damping": 0.1}},
+      {"name": "slider", "type": "prismatic", "bodies": ["a", "b"], "anchor": [1, 0, -1], "axis": [1, 0, 0],
+       "limits": [-0.5, 0.5], "motor": {"speed": 1, "maxForce": 2}, "spring": {"stiffness": 3, "damping": 0.1}}
+    ]
+  })");
+  const std::vector<Variable> vars = rigidfmu::modelVariables(scene);
+  for (rigidfmu::FmiVersion version : {rigidfmu::FmiVersion::Fmi2, rigidfmu::FmiVersion::Fmi3}) {
+    const std::string xml = rigidfmu::modelDescriptionXml(scene, version);
+    for (const Variable& v : vars) {
+      if (v.type == rigidfmu::BaseType::Real) {
+        EXPECT_TRUE(contains(xml, "<Unit name=\"" + v.unit + "\">")) << v.name;
+      }
+    }
+  }
+  for (const char* unit : {"rad", "N.m/rad", "N.m.s/rad", "N/m", "N.s/m"})
+    EXPECT_NE(std::find_if(vars.begin(), vars.end(), [&](const Variable& v) { return v.unit == unit; }), vars.end())
+        << unit;
 }

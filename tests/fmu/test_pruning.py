@@ -29,6 +29,14 @@ def gravity_only_scene():
     return scenes.scene("GravityOnly", [scenes.body("ball", collision=False)])
 
 
+def jointed_scene():
+    a, b = scenes.body("a", position=[0, 0, 1]), scenes.body("b", position=[1, 0, 1])
+    s = scenes.scene("Jointed", [a, b])
+    s["joints"] = [{"name": "hinge", "type": "revolute", "bodies": ["a", "b"], "anchor": [0.5, 0, 1],
+                    "axis": [0, 1, 0]}]
+    return s
+
+
 def media_scene():
     s = scenes.scene("MediaOnly", [scenes.body("ball")])
     s["media"] = [{"name": "tank", "type": "water", "min": [-1, -1, -1], "max": [1, 1, 1]}]
@@ -126,7 +134,8 @@ def test_gravity_only_fmu_needs_no_collision_libraries(fmu_of):
         shutil.rmtree(unzip, ignore_errors=True)
 
 
-@pytest.mark.parametrize("make,mask", [(gravity_only_scene, 0), (media_scene, 2), (colliding_scene, 5)])
+@pytest.mark.parametrize("make,mask", [(gravity_only_scene, 0), (media_scene, 2), (colliding_scene, 5),
+                                       (jointed_scene, 13)])
 def test_each_scene_gets_the_binary_of_its_modules(fmu_of, make, mask):
     fmu = fmu_of(make())
     unzip = extract(str(fmu), unzipdir=tempfile.mkdtemp(prefix="rigid-mask-"))
@@ -134,6 +143,15 @@ def test_each_scene_gets_the_binary_of_its_modules(fmu_of, make, mask):
         assert sha(binary_of(fmu, unzip)) == sha(BUILD / f"rigidfmu_fmi2_{expected_mask(mask)}.so")
     finally:
         shutil.rmtree(unzip, ignore_errors=True)
+
+
+def test_only_the_binaries_with_joints_carry_the_joint_solver():
+    """The joints' rows (src/joint_rows.cpp) are in the binaries of mask bit 8 only; the
+    others read a joint scene only to refuse it."""
+    for mask in built_masks():
+        symbols = subprocess.run(["nm", "-C", str(BUILD / f"rigidfmu_fmi2_{mask}.so")], capture_output=True,
+                                 text=True, check=True).stdout
+        assert ("JointRows::solve" in symbols) == bool(mask & 8), mask
 
 
 @pytest.mark.skipif(SANITIZED and 0 not in built_masks(), reason=ONLY_TOP)

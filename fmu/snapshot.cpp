@@ -222,7 +222,8 @@ template <class Archive, class Model, class Data>
 void visitJoints(Archive& a, Model& m, Data& d) {
   for (size_t k = 0; k < m.joints.size(); ++k) {
     auto& j = m.joints[k];
-    a(j.maxMotorForce), a(j.stiffness), a(j.damping), a(j.lower), a(j.upper), a(j.motorSpeed), a(j.targetPosition);
+    a(j.maxMotorForce), a(j.stiffness), a(j.damping), a(j.restitution), a(j.lower), a(j.upper);
+    a(j.motorSpeed), a(j.targetPosition);
     for (auto& impulse : d.joints.memory[k]) a(impulse);
     a(d.joints.angle[k]), a(d.joints.motorSpeed[k]), a(d.joints.targetPosition[k]);
     a(d.joints.impulse[k]), a(d.joints.angularImpulse[k]), a(d.joints.position[k]), a(d.joints.speed[k]);
@@ -325,7 +326,7 @@ static_assert(fieldCount<rigid::RestingPush>() == 3,
 static_assert(fieldCount<rigid::IntegratorState>() == 2,
               "a field was added to rigid::IntegratorState: visit it in visitState (fmu/snapshot.cpp), then update "
               "this count");
-static_assert(fieldCount<rigid::JointConstants>() == 22,
+static_assert(fieldCount<rigid::JointConstants>() == 23,
               "a field was added to rigid::JointConstants: if a parameter or input sets it, visit it in "
               "visitJoints (fmu/snapshot.cpp); then update this count");
 static_assert(fieldCount<rigid::JointData>() == 8,
@@ -380,6 +381,18 @@ bool materialsInRange(const rigid::WorldModel& m) {
   return true;
 }
 
+// A motor's force > 0, springs' stiffness and damping >= 0, restitution in [0, 1],
+// limits finite with lower <= upper: what setting the parameters allows.
+bool jointsInRange(const rigid::WorldModel& m) {
+  auto ok = [](double v) { return std::isfinite(v) && v >= 0.0; };
+  for (const rigid::JointConstants& j : m.joints)
+    if (!(j.maxMotorForce > 0.0 || !j.motor) || !ok(j.maxMotorForce) || !ok(j.stiffness) || !ok(j.damping) ||
+        !ok(j.restitution) || j.restitution > 1.0 || !std::isfinite(j.lower) || !std::isfinite(j.upper) ||
+        j.lower > j.upper)
+      return false;
+  return true;
+}
+
 // Masses > 0, each then set again so that Ibody follows, as when the parameter is set;
 // materials in range.
 std::string acceptParameters(rigid::WorldModel& m) {
@@ -388,6 +401,7 @@ std::string acceptParameters(rigid::WorldModel& m) {
     rigid::setMass(b, b.mass);
   }
   if (!materialsInRange(m)) return "the state holds a friction, restitution or fluid property out of range";
+  if (!jointsInRange(m)) return "the state holds a joint's parameter out of range";
   return "";
 }
 

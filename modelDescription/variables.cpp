@@ -200,6 +200,9 @@ void addJointVariables(const WorldModel& model, Add add) {
       scalar("damping", Quantity::JointDamping, Causality::Parameter, Variability::Tunable, u.damping,
              "the spring's damping, >= 0");
     }
+    if (j.limited || j.rope)
+      scalar("restitution", Quantity::JointRestitution, Causality::Parameter, Variability::Tunable, "1",
+             "coefficient of restitution of its stops (limits, a rope's length), in [0, 1]");
     if (j.limited) {
       scalar("lower", Quantity::JointLower, Causality::Parameter, Variability::Tunable, u.position,
              "lower limit of its position, <= upper");
@@ -227,6 +230,7 @@ double jointValue(const Variable& v, const WorldModel& model, const WorldData& d
     case Quantity::JointMaxMotorForce: return j.maxMotorForce;
     case Quantity::JointStiffness: return j.stiffness;
     case Quantity::JointDamping: return j.damping;
+    case Quantity::JointRestitution: return j.restitution;
     case Quantity::JointLower: return j.lower;
     default: return j.upper;
   }
@@ -251,6 +255,10 @@ std::string writeJoint(const Variable& v, double value, WorldModel& model, World
     case Quantity::JointDamping:
       if (value < 0.0) return v.name + ": must be >= 0 " + v.unit + ", got " + fmt(value);
       (v.quantity == Quantity::JointStiffness ? j.stiffness : j.damping) = value;
+      return "";
+    case Quantity::JointRestitution:
+      if (value < 0.0 || value > 1.0) return v.name + ": must be in [0, 1], got " + fmt(value);
+      j.restitution = value;
       return "";
     case Quantity::JointLower: j.lower = value; return "";
     case Quantity::JointUpper: j.upper = value; return "";
@@ -494,6 +502,7 @@ double readValue(const Variable& v, const WorldModel& model, const WorldData& da
     case Quantity::JointMaxMotorForce:
     case Quantity::JointStiffness:
     case Quantity::JointDamping:
+    case Quantity::JointRestitution:
     case Quantity::JointLower:
     case Quantity::JointUpper: return jointValue(v, model, data, phase);
   }
@@ -595,6 +604,7 @@ std::string writeValue(const Variable& v, double value, WorldModel& model, World
     case Quantity::JointMaxMotorForce:
     case Quantity::JointStiffness:
     case Quantity::JointDamping:
+    case Quantity::JointRestitution:
     case Quantity::JointLower:
     case Quantity::JointUpper: return writeJoint(v, value, model, data, phase);
   }

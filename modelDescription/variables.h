@@ -28,7 +28,7 @@ enum class Quantity {
   Contacts, ContactForce, ContactTorque, SurfaceForce,
   BeltVelocity,
   JointPosition, JointSpeed, JointReactionForce, JointReactionTorque, JointMotorSpeed, JointTargetPosition,
-  JointMaxMotorForce, JointStiffness, JointDamping, JointLower, JointUpper,
+  JointMaxMotorForce, JointStiffness, JointDamping, JointRestitution, JointLower, JointUpper,
 };
 // clang-format on
 

@@ -332,12 +332,13 @@ bool impact(const Manifold& m, const std::vector<Point>& points, double restingS
   return true;
 }
 
-// Passes over the pairs while one of them strikes, so that a chain of touching bodies
-// passes an impact on (Newton's cradle). Returns the passes taken.
-int answerImpacts(Solver& s, double restingSpeed, double h, ContactImpulses& out) {
+// Passes over the pairs (and the extra rows' stops) while one of them strikes, so that
+// a chain of touching bodies passes an impact on (Newton's cradle). Returns the passes
+// taken.
+int answerImpacts(Solver& s, double restingSpeed, double h, ContactImpulses& out, ExtraRows* extra) {
   int passes = 0;
   for (bool struck = true; struck && passes < kMaxImpactPasses;) {
-    struck = false;
+    struck = extra && extra->impact(s.bodies, restingSpeed, h);
     for (const Manifold& m : s.manifolds)
       if (impact(m, s.points, restingSpeed, h, s, out)) struck = true;
     if (struck) ++passes;
@@ -593,7 +594,7 @@ Solver& prepareAndAnswerImpacts(const WorldModel& model, const WorldData& data, 
     }
   }
   report.points = static_cast<int>(s.points.size());
-  report.impactPasses = answerImpacts(s, restingNormalSpeed(model.gravity, model.maxStep), h, impulses);
+  report.impactPasses = answerImpacts(s, restingNormalSpeed(model.gravity, model.maxStep), h, impulses, extra);
   return s;
 }
 

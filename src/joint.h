@@ -37,9 +37,11 @@ struct JointConstants {
   Quat rest = Quat::Identity();  // qA^-1 qB at the start: the angle's zero, a weld's hold
   double length = 0.0;           // m, a distance joint's length (a spring's rest length)
   bool rope = false;             // a distance joint that only pulls
-  // Limits of the coordinate (rad or m).
+  // Limits of the coordinate (rad or m), and the restitution of a stop at them (or at
+  // a rope's full length): the share of the approach speed the stop gives back.
   bool limited = false;
   double lower = 0.0, upper = 0.0;
+  double restitution = 0.0;
   // A speed motor: the coordinate's speed driven toward the input motorSpeed with at
   // most maxMotorForce (N, or N m for a revolute joint).
   bool motor = false;

@@ -242,6 +242,29 @@ class JointRows final : public ExtraRows {
 
   bool any() const override { return !work_.empty(); }
 
+  // A limit (or a rope's full length) that the coordinate reaches within the step at
+  // more than a resting speed is struck as a contact is: j = -(1 + e) v m_eff, e the
+  // joint's restitution; the sub-steps' one-sided rows then hold it there.
+  bool impact(std::vector<Body>& bodies, double restingSpeed, double h) override {
+    bool struck = false;
+    for (Work& w : work_) {
+      if (!w.on[kLower] && !w.on[kUpper]) continue;
+      Body& A = bodies[w.a];
+      Body& B = bodies[w.b];
+      build(w, A, B);
+      for (int k : {kLower, kUpper}) {
+        const double approach = velocityAlong(A, B, w.row[k]);
+        if (!w.on[k] || !(approach < -restingSpeed) || w.error[k] > -approach * h) continue;
+        const double j = -(1.0 + w.joint->restitution) * approach / coupling(A, B, w.row[k], w.row[k]);
+        applyImpulse(A, B, w.row[k], j);
+        w.impulse += j * w.row[k].linear;
+        w.angularImpulse += j * (w.row[k].angularB - w.rB.cross(w.row[k].linear));
+        struck = true;
+      }
+    }
+    return struck;
+  }
+
   void warmStart(std::vector<Body>& bodies) override {
     for (Work& w : work_) {
       Body& A = bodies[w.a];

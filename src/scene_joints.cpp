@@ -98,6 +98,13 @@ void readLimits(const Object& o, JointConstants& j) {
   j.upper = v[1];
 }
 
+// The stops' restitution: a joint with limits or a rope has stops.
+void readRestitution(const Object& o, JointConstants& j) {
+  if (!o.has("restitution")) return;
+  if (!j.limited && !j.rope) fail(o.path("restitution"), "only a joint with limits (or a rope) has stops to bounce at");
+  j.restitution = inRange(o, "restitution", 0.0, 0.0, 1.0);
+}
+
 // "motor": {"speed", "maxTorque" (revolute) or "maxForce"}; "spring": {"stiffness",
 // "damping", "target" (not for a distance joint, whose target is its length)}.
 void readDrives(const Object& o, JointConstants& j) {
@@ -126,8 +133,8 @@ void readDrives(const Object& o, JointConstants& j) {
 
 JointConstants readJoint(const json& json, const std::string& path, const std::vector<BodyConstants>& bodies) {
   const Object o(json, path,
-                 {"name", "type", "bodies", "anchor", "anchors", "axis", "axes", "length", "rope", "limits", "motor",
-                  "spring", "collide"});
+                 {"name", "type", "bodies", "anchor", "anchors", "axis", "axes", "length", "rope", "limits",
+                  "restitution", "motor", "spring", "collide"});
   JointConstants j;
   j.name = identifier(o, "name");
   j.type = readType(o);
@@ -158,6 +165,7 @@ JointConstants readJoint(const json& json, const std::string& path, const std::v
     j.rope = o.boolean("rope", false);
   }
   readLimits(o, j);
+  readRestitution(o, j);
   readDrives(o, j);
   j.collide = o.boolean("collide", false);
   return j;

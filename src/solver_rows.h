@@ -109,6 +109,9 @@ class ExtraRows {
   virtual void prepare(const WorldModel& model, const WorldData& data, double h, std::vector<int>& bodies) = 0;
   // Whether a solve has rows: a step with neither these nor contacts solves nothing.
   virtual bool any() const = 0;
+  // Impacts at the step's start, with the bodies' velocities then (the seed's impulse,
+  // as the contacts'): whether a row struck.
+  virtual bool impact(std::vector<solver::Body>& bodies, double restingSpeed, double h) = 0;
   virtual void warmStart(std::vector<solver::Body>& bodies) = 0;
   virtual void solve(std::vector<solver::Body>& bodies, double hSub, bool useBias) = 0;
   virtual void endSubstep() = 0;

@@ -3,8 +3,9 @@ ropes, springs), with limits, motors and reaction outputs, solved as rows of the
 constraint solver. Closed forms: the pendulum's period (small amplitude, and at 90 deg
 from the complete elliptic integral), a physical pendulum on a hinge, a hanging chain's
 reactions (the weight below each joint), a motor's spin-up at tau / I, a slider
-stopping at its limit, a spring's period. A double pendulum is compared with an
-independent reference (scipy on its Lagrangian equations)."""
+stopping at its limit and bouncing off it with the joint's restitution, a spring's
+period. Mechanisms (double pendulum, four-bar, Newton's cradle) are in
+test_joint_mechanisms.py."""
 import math
 
 import numpy as np
@@ -296,3 +297,18 @@ def test_joints_come_back_bitwise_from_a_state_its_bytes_and_a_reset(slave):
     s.slave.reset()
     s.initialize()
     assert drive_mechanism(s, 0.0, 1.0) == first
+
+
+@pytest.mark.parametrize("restitution", [0.0, 0.5, 1.0])
+def test_a_stop_gives_back_its_restitution_of_the_approach_speed(slave, restitution):
+    """A carriage at 1 m/s along a level rail strikes its upper limit, 0.3 m ahead: it
+    leaves at -e m/s (e = 0 by default), as a body leaves a wall."""
+    rail = {"limits": [-0.5, 0.3]} | ({"restitution": restitution} if restitution else {})
+    s = scene("BouncingSlider", [box("carriage", [0.1, 0.1, 0.1], [0, 0, 0], mass=3.0, velocity=[1, 0, 0])],
+              [{"name": "rail", "type": "prismatic", "bodies": ["world", "carriage"], "anchor": [0, 0, 0],
+                "axis": [1, 0, 0], **rail}])
+    t, y = run(slave(s), ["rail.position", "rail.speed"], 0.6, 0.001)
+    before, after = t < 0.3 - 0.002, t > 0.3 + 0.002
+    np.testing.assert_allclose(y[before, 1], 1.0, rtol=1e-12)
+    np.testing.assert_allclose(y[after, 1], -restitution, atol=1e-9)
+    assert np.max(y[:, 0]) < 0.3 + 1e-3

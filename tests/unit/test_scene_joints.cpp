@@ -92,3 +92,17 @@ TEST(SceneJoints, FieldsThatTheTypeHasNotAreRefused) {
   EXPECT_EQ(refusal(R"({"name": "h", "type": "hinge", "bodies": ["a", "b"]})"),
             "joints[0].type: must be one of revolute, prismatic, spherical, fixed, distance, got \"hinge\"");
 }
+
+TEST(SceneJoints, OnlyAJointWithStopsHasARestitutionWithinZeroAndOne) {
+  EXPECT_EQ(
+      rigid::parseScene(sceneWith(kHinge + R"("axis": [0, 1, 0], "limits": [-1, 1]})")).model.joints[0].restitution,
+      0.0);
+  EXPECT_EQ(rigid::parseScene(sceneWith(kHinge + R"("axis": [0, 1, 0], "limits": [-1, 1], "restitution": 0.25})"))
+                .model.joints[0]
+                .restitution,
+            0.25);
+  EXPECT_EQ(refusal(kHinge + R"("axis": [0, 1, 0], "restitution": 0.5})"),
+            "joints[0].restitution: only a joint with limits (or a rope) has stops to bounce at");
+  EXPECT_EQ(refusal(kHinge + R"("axis": [0, 1, 0], "limits": [-1, 1], "restitution": 1.5})"),
+            "joints[0].restitution: must be in [0, 1], got 1.5");
+}

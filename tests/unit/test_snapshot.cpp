@@ -256,9 +256,9 @@ TEST(Snapshot, EveryFieldComesBackFromTheBytesIntoItsOwnPlace) {
 // must be refused, not misread) and pin the new size and hash here.
 TEST(Snapshot, TheBytesAreThoseOfTheFormatVersion) {
   const std::vector<char> bytes = rigidfmu::serialize(filled(sceneModel()), kGuid);
-  EXPECT_EQ(rigidfmu::kSnapshotVersion, 10u);
+  EXPECT_EQ(rigidfmu::kSnapshotVersion, 11u);
   EXPECT_EQ(bytes.size(), 2070u);
-  EXPECT_EQ(hashOf(bytes), 0x24c930df8f963a64ull);
+  EXPECT_EQ(hashOf(bytes), 0x47a32191118d2661ull);
 }
 
 // A conveyor's belt velocity (its start value, its value in the run and its rate) comes
@@ -281,6 +281,66 @@ TEST(Snapshot, AConveyorsBeltComesBackAndOnlyAConveyorAddsBytes) {
   expectSameRunAndParameters(s, back);
   expectSameBodies(s.data, back.data);
   expectSameHistory(s.data, back.data);
+}
+
+// A hinge between the two bodies with limits, a motor and a spring: its tunable
+// parameters, its inputs' start values and its run (warm-start impulses, angle, inputs,
+// reactions, coordinate) come back from the bytes; only joints add them (240 bytes).
+rigid::WorldModel withHinge(rigid::WorldModel model) {
+  rigid::JointConstants j;
+  j.name = "hinge", j.type = rigid::JointType::Revolute, j.a = 0, j.b = 1;
+  j.limited = j.motor = j.spring = true;
+  model.joints.push_back(j);
+  return model;
+}
+
+TEST(Snapshot, AJointComesBackAndOnlyAJointAddsBytes) {
+  const size_t plain = rigidfmu::serialize(filled(sceneModel()), kGuid).size();
+  const rigid::WorldModel model = withHinge(sceneModel());
+  Snapshot s = filled(model);
+  Values v;
+  rigid::JointConstants& j = s.model.joints[0];
+  j.maxMotorForce = v.next(), j.stiffness = v.next(), j.damping = v.next(), j.restitution = v.fraction();
+  j.lower = v.next(), j.upper = v.next(), j.motorSpeed = v.next(), j.targetPosition = v.next();
+  rigid::JointData& d = s.data.joints;
+  for (double& impulse : d.memory[0]) impulse = v.next();
+  d.angle[0] = v.next(), d.motorSpeed[0] = v.next(), d.targetPosition[0] = v.next();
+  d.impulse[0] = v.vec(), d.angularImpulse[0] = v.vec(), d.position[0] = v.next(), d.speed[0] = v.next();
+  const std::vector<char> bytes = rigidfmu::serialize(s, kGuid);
+  EXPECT_EQ(bytes.size(), plain + 240u);
+  Snapshot back = fresh(model);
+  ASSERT_EQ(readInto(back, bytes), "");
+  const rigid::JointConstants& b = back.model.joints[0];
+  EXPECT_EQ(b.maxMotorForce, j.maxMotorForce);
+  EXPECT_EQ(b.stiffness, j.stiffness);
+  EXPECT_EQ(b.damping, j.damping);
+  EXPECT_EQ(b.restitution, j.restitution);
+  EXPECT_EQ(b.lower, j.lower);
+  EXPECT_EQ(b.upper, j.upper);
+  EXPECT_EQ(b.motorSpeed, j.motorSpeed);
+  EXPECT_EQ(b.targetPosition, j.targetPosition);
+  const rigid::JointData& e = back.data.joints;
+  EXPECT_EQ(e.memory, d.memory);
+  EXPECT_EQ(e.angle, d.angle);
+  EXPECT_EQ(e.motorSpeed, d.motorSpeed);
+  EXPECT_EQ(e.targetPosition, d.targetPosition);
+  EXPECT_EQ(e.impulse, d.impulse);
+  EXPECT_EQ(e.angularImpulse, d.angularImpulse);
+  EXPECT_EQ(e.position, d.position);
+  EXPECT_EQ(e.speed, d.speed);
+  expectSameRunAndParameters(s, back);
+  expectSameBodies(s.data, back.data);
+  expectSameHistory(s.data, back.data);
+  // and a joint's parameter out of range is refused, as setting it is
+  for (auto spoil :
+       {+[](rigid::JointConstants& x) { x.restitution = 1.5; },
+        +[](rigid::JointConstants& x) { x.maxMotorForce = 0.0; }, +[](rigid::JointConstants& x) { x.stiffness = -1.0; },
+        +[](rigid::JointConstants& x) { x.lower = x.upper + 1.0; }}) {
+    Snapshot bad = s;
+    spoil(bad.model.joints[0]);
+    Snapshot target = fresh(model);
+    EXPECT_EQ(readInto(target, rigidfmu::serialize(bad, kGuid)), "the state holds a joint's parameter out of range");
+  }
 }
 
 struct Spoilt {
@@ -330,12 +390,12 @@ TEST(Snapshot, BytesOfAnotherSizeFormatOrSceneAreRefused) {
   Snapshot target = fresh(model);
   std::vector<char> shorter(bytes.begin(), bytes.end() - 1), longer = bytes, newer = bytes;
   longer.push_back(0);
-  newer[8] = 11;  // the version's low byte
+  newer[8] = 12;  // the version's low byte
   EXPECT_EQ(readInto(target, shorter), "the serialized state has " + std::to_string(bytes.size() - 1) +
                                            " bytes, not the size of a state of this scene");
   EXPECT_EQ(readInto(target, longer), "the serialized state has " + std::to_string(bytes.size() + 1) +
                                           " bytes, not the size of a state of this scene");
-  EXPECT_EQ(readInto(target, newer), "state format version 11, this FMU reads version 10");
+  EXPECT_EQ(readInto(target, newer), "state format version 12, this FMU reads version 11");
   EXPECT_EQ(readInto(target, bytes, "{other}"), "the state is of another scene (GUID " + kGuid + ", this FMU {other})");
   EXPECT_EQ(readInto(target, std::vector<char>(bytes.begin(), bytes.begin() + 5)),
             "the serialized state is too short (5 bytes)");

@@ -371,17 +371,22 @@ Instance::Interval Instance::advance(double h, bool reportSubsteps, bool stopAtI
   // the values the master set, and the derivatives are spent.
   const std::vector<rigid::BodyInput> setInputs = data_.input;
   const std::vector<rigid::Vec3> setBelts = data_.beltVelocity;
+  const std::vector<double> setMotors = data_.joints.motorSpeed, setTargets = data_.joints.targetPosition;
   struct Restore {
     rigid::WorldData& d;
     const std::vector<rigid::BodyInput>& inputs;
     const std::vector<rigid::Vec3>& belts;
+    const std::vector<double>&motors, &targets;
     ~Restore() {
       d.input = inputs;
       for (rigid::BodyInput& rate : d.inputRate) rate = rigid::zeroInput(rate.loads.size());
       d.beltVelocity = belts;
       d.beltRate.assign(belts.size(), rigid::Vec3::Zero());
+      d.joints.motorSpeed = motors, d.joints.targetPosition = targets;
+      d.joints.motorSpeedRate.assign(motors.size(), 0.0);
+      d.joints.targetPositionRate.assign(targets.size(), 0.0);
     }
-  } restore{data_, setInputs, setBelts};
+  } restore{data_, setInputs, setBelts, setMotors, setTargets};
   // Driven bodies move from where they are to where their inputs take them (drive.h).
   const std::vector<rigid::DrivePath> paths = drivePaths(h, reportSubsteps);
   struct SpendRates {
@@ -402,6 +407,10 @@ Instance::Interval Instance::advance(double h, bool reportSubsteps, bool stopAtI
         data_.input[b].loads[k] = setInputs[b].loads[k] + mid * data_.inputRate[b].loads[k];
     }
     for (size_t s = 0; s < setBelts.size(); ++s) data_.beltVelocity[s] = setBelts[s] + mid * data_.beltRate[s];
+    for (size_t j = 0; j < setMotors.size(); ++j) {
+      data_.joints.motorSpeed[j] = setMotors[j] + mid * data_.joints.motorSpeedRate[j];
+      data_.joints.targetPosition[j] = setTargets[j] + mid * data_.joints.targetPositionRate[j];
+    }
     const rigid::StepResult r = rigid::step(model_, data_, to - from, stopAtImpact);
     if (!r.ok) return {r, from, to};
     if (reportSubsteps) noteSubsteps(r, to - from);
@@ -581,6 +590,12 @@ Status Instance::setInputDerivatives(const uint32_t vr[], size_t n, const int32_
     if (!std::isfinite(value[i])) return error(v->name + ": must be finite, got " + num(value[i]));
     if (v->quantity == Quantity::BeltVelocity) {  // the belt's acceleration over the step
       data_.beltRate[v->body][v->component] = value[i];
+      continue;
+    }
+    if (v->quantity == Quantity::JointMotorSpeed || v->quantity == Quantity::JointTargetPosition) {
+      const size_t joint = static_cast<size_t>(v->body);  // a joint's variables name its index
+      (v->quantity == Quantity::JointMotorSpeed ? data_.joints.motorSpeedRate
+                                                : data_.joints.targetPositionRate)[joint] = value[i];
       continue;
     }
     // A driven body's motion over the step follows its velocities and their rates;

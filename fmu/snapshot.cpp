@@ -226,6 +226,7 @@ void visitJoints(Archive& a, Model& m, Data& d) {
     a(j.motorSpeed), a(j.targetPosition);
     for (auto& impulse : d.joints.memory[k]) a(impulse);
     a(d.joints.angle[k]), a(d.joints.motorSpeed[k]), a(d.joints.targetPosition[k]);
+    a(d.joints.motorSpeedRate[k]), a(d.joints.targetPositionRate[k]);
     a(d.joints.impulse[k]), a(d.joints.angularImpulse[k]), a(d.joints.position[k]), a(d.joints.speed[k]);
   }
 }
@@ -329,7 +330,7 @@ static_assert(fieldCount<rigid::IntegratorState>() == 2,
 static_assert(fieldCount<rigid::JointConstants>() == 23,
               "a field was added to rigid::JointConstants: if a parameter or input sets it, visit it in "
               "visitJoints (fmu/snapshot.cpp); then update this count");
-static_assert(fieldCount<rigid::JointData>() == 8,
+static_assert(fieldCount<rigid::JointData>() == 10,
               "a field was added to rigid::JointData: unless it is derived, visit it in visitJoints "
               "(fmu/snapshot.cpp); then update this count");
 static_assert(fieldCount<rigid::ContactMemory>() == 8,

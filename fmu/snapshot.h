@@ -28,7 +28,7 @@ struct Snapshot {
 // viscosity, forces at load points; 7: the contact loads, and those of sleeping bodies;
 // 8: the contact points' twist impulse; 9: the communication clock, driven bodies' inputs;
 // 10: joints
-inline constexpr uint32_t kSnapshotVersion = 11;
+inline constexpr uint32_t kSnapshotVersion = 12;
 
 // The bytes of a snapshot of a scene with this GUID.
 std::vector<char> serialize(const Snapshot& s, const std::string& guid);

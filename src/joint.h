@@ -74,6 +74,9 @@ struct JointData {
   std::vector<std::array<double, kJointRows>> memory;
   std::vector<double> angle;
   std::vector<double> motorSpeed, targetPosition;
+  // The inputs' derivatives for the next communication step (1/s times their units),
+  // spent by it, as the bodies' input rates.
+  std::vector<double> motorSpeedRate, targetPositionRate;
   std::vector<Vec3> impulse, angularImpulse;
   // Derived from the state after each step: the coordinate and its rate.
   std::vector<double> position, speed;

@@ -359,6 +359,8 @@ void startJoints(const WorldModel& model, WorldData& data) {
     d.motorSpeed.push_back(j.motorSpeed);
     d.targetPosition.push_back(j.targetPosition);
   }
+  d.motorSpeedRate.assign(n, 0.0);
+  d.targetPositionRate.assign(n, 0.0);
   d.impulse.assign(n, Vec3::Zero());
   d.angularImpulse.assign(n, Vec3::Zero());
   d.position.assign(n, 0.0);

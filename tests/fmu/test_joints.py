@@ -195,6 +195,20 @@ def test_the_motors_speed_and_torque_are_an_input_and_a_tunable_parameter(slave)
     assert s.get("axle.speed") == pytest.approx(2.0, rel=1e-6)
 
 
+def test_a_motor_speed_with_a_derivative_ramps_over_the_step(slave):
+    """fmi2SetRealInputDerivatives on the motor's speed: over one communication step of
+    0.5 s the target ramps from 0 at 10 rad/s^2 (each internal step of 1 ms holds its
+    midpoint's value), and a strong motor follows it to 5 rad/s; the next step, given no
+    derivative, holds the input the master set."""
+    s = slave(wheel(speed=0.0, maxTorque=100.0))
+    s.slave.setRealInputDerivatives(s.vr(["axle.motorSpeed"]), [1], [10.0])
+    s.step(0.5, 0.0)
+    assert s.get("axle.speed") == pytest.approx(10.0 * (0.5 - 0.0005), abs=1e-6)
+    assert s.get("axle.motorSpeed") == 0.0
+    s.step(0.1)
+    assert s.get("axle.speed") == pytest.approx(0.0, abs=1e-6)
+
+
 def slider(**joint):
     """A box on a vertical slider from the world, at rest at its anchor."""
     return scene("Slider", [box("carriage", [0.1, 0.1, 0.1], [0, 0, 0], mass=3.0)],

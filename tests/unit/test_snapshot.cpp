@@ -256,9 +256,9 @@ TEST(Snapshot, EveryFieldComesBackFromTheBytesIntoItsOwnPlace) {
 // must be refused, not misread) and pin the new size and hash here.
 TEST(Snapshot, TheBytesAreThoseOfTheFormatVersion) {
   const std::vector<char> bytes = rigidfmu::serialize(filled(sceneModel()), kGuid);
-  EXPECT_EQ(rigidfmu::kSnapshotVersion, 11u);
+  EXPECT_EQ(rigidfmu::kSnapshotVersion, 12u);
   EXPECT_EQ(bytes.size(), 2070u);
-  EXPECT_EQ(hashOf(bytes), 0x47a32191118d2661ull);
+  EXPECT_EQ(hashOf(bytes), 0x2aabeff40b21def2ull);
 }
 
 // A conveyor's belt velocity (its start value, its value in the run and its rate) comes
@@ -285,7 +285,7 @@ TEST(Snapshot, AConveyorsBeltComesBackAndOnlyAConveyorAddsBytes) {
 
 // A hinge between the two bodies with limits, a motor and a spring: its tunable
 // parameters, its inputs' start values and its run (warm-start impulses, angle, inputs,
-// reactions, coordinate) come back from the bytes; only joints add them (240 bytes).
+// reactions, coordinate) come back from the bytes; only joints add them (256 bytes).
 rigid::WorldModel withHinge(rigid::WorldModel model) {
   rigid::JointConstants j;
   j.name = "hinge", j.type = rigid::JointType::Revolute, j.a = 0, j.b = 1;
@@ -305,9 +305,10 @@ TEST(Snapshot, AJointComesBackAndOnlyAJointAddsBytes) {
   rigid::JointData& d = s.data.joints;
   for (double& impulse : d.memory[0]) impulse = v.next();
   d.angle[0] = v.next(), d.motorSpeed[0] = v.next(), d.targetPosition[0] = v.next();
+  d.motorSpeedRate[0] = v.next(), d.targetPositionRate[0] = v.next();
   d.impulse[0] = v.vec(), d.angularImpulse[0] = v.vec(), d.position[0] = v.next(), d.speed[0] = v.next();
   const std::vector<char> bytes = rigidfmu::serialize(s, kGuid);
-  EXPECT_EQ(bytes.size(), plain + 240u);
+  EXPECT_EQ(bytes.size(), plain + 256u);
   Snapshot back = fresh(model);
   ASSERT_EQ(readInto(back, bytes), "");
   const rigid::JointConstants& b = back.model.joints[0];
@@ -324,6 +325,8 @@ TEST(Snapshot, AJointComesBackAndOnlyAJointAddsBytes) {
   EXPECT_EQ(e.angle, d.angle);
   EXPECT_EQ(e.motorSpeed, d.motorSpeed);
   EXPECT_EQ(e.targetPosition, d.targetPosition);
+  EXPECT_EQ(e.motorSpeedRate, d.motorSpeedRate);
+  EXPECT_EQ(e.targetPositionRate, d.targetPositionRate);
   EXPECT_EQ(e.impulse, d.impulse);
   EXPECT_EQ(e.angularImpulse, d.angularImpulse);
   EXPECT_EQ(e.position, d.position);
@@ -390,12 +393,12 @@ TEST(Snapshot, BytesOfAnotherSizeFormatOrSceneAreRefused) {
   Snapshot target = fresh(model);
   std::vector<char> shorter(bytes.begin(), bytes.end() - 1), longer = bytes, newer = bytes;
   longer.push_back(0);
-  newer[8] = 12;  // the version's low byte
+  newer[8] = 13;  // the version's low byte
   EXPECT_EQ(readInto(target, shorter), "the serialized state has " + std::to_string(bytes.size() - 1) +
                                            " bytes, not the size of a state of this scene");
   EXPECT_EQ(readInto(target, longer), "the serialized state has " + std::to_string(bytes.size() + 1) +
                                           " bytes, not the size of a state of this scene");
-  EXPECT_EQ(readInto(target, newer), "state format version 12, this FMU reads version 11");
+  EXPECT_EQ(readInto(target, newer), "state format version 13, this FMU reads version 12");
   EXPECT_EQ(readInto(target, bytes, "{other}"), "the state is of another scene (GUID " + kGuid + ", this FMU {other})");
   EXPECT_EQ(readInto(target, std::vector<char>(bytes.begin(), bytes.begin() + 5)),
             "the serialized state is too short (5 bytes)");

@@ -18,11 +18,19 @@
 //     alone, every body awake to the end.
 //   BM_PileWide/<N>: BM_PileWindows on pile_wide_<N>.json, N cubes in columns of the
 //     pile of 100's height: growth from 100 cubes at equal height.
+//   BM_Chain/<N>/<ms>: chain_<N>.json (N links hinged end to end, issue 41) swinging
+//     down from horizontal for <ms> simulated milliseconds from rest, once per
+//     iteration: the steps' CPU time (each step timed by this thread's CPU clock, the
+//     probes outside) with the stages' wall times (swing_*), the joints' drift (the
+//     largest distance between a joint's two anchor points, and angle between a hinge's
+//     two axes, over joints and steps), the energy (kinetic + potential, J) at the start
+//     and its largest departure, and the tip's position at the end.
 #include <benchmark/benchmark.h>
 #include <time.h>  // clock_gettime, CLOCK_THREAD_CPUTIME_ID (POSIX)
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -291,6 +299,85 @@ void pileWindows(benchmark::State& state, const std::string& file, bool sleep) {
   state.counters["asleep_3s"] = asleep3;
 }
 
+// A joint's anchor on body `i` (-1: the world, whose frame is the world frame), in the
+// world frame; and a body frame's vector in the world frame.
+rigid::Vec3 anchorOf(const rigid::WorldData& data, int i, const rigid::Vec3& local) {
+  return i < 0 ? local : rigid::Vec3(data.Y[i].X + data.aux[i].R * local);
+}
+rigid::Vec3 axisOf(const rigid::WorldData& data, int i, const rigid::Vec3& local) {
+  return i < 0 ? local : rigid::Vec3(data.aux[i].R * local);
+}
+
+// Kinetic + potential energy (J) of the bodies, the potential zero at the origin.
+double energyOf(const rigid::WorldModel& model, const rigid::WorldData& data) {
+  double e = 0.0;
+  for (size_t i = 0; i < data.Y.size(); ++i) {
+    const rigid::BodyConstants& b = model.bodies[i];
+    const rigid::BodyAux& a = data.aux[i];
+    e += 0.5 * b.mass * a.V.squaredNorm() + 0.5 * a.omega.dot(data.Y[i].L) - b.mass * model.gravity.dot(data.Y[i].X);
+  }
+  return e;
+}
+
+void chain(benchmark::State& state, const std::string& file, int milliseconds) {
+  const rigid::Scene scene = load(file);
+  const rigid::WorldModel& model = scene.model;
+  const double h = model.maxStep;
+  const int steps = static_cast<int>(1e-3 * milliseconds / h + 0.5);
+  Window swing;
+  double drift = 0.0, twist = 0.0, e0 = 0.0, worst = 0.0, endGain = 0.0, fastest = 0.0;
+  rigid::Vec3 tip = rigid::Vec3::Zero();
+  long ok = 0;
+  for (auto _ : state) {
+    // the State's timer stays paused: the report reads the steps' own CPU time (swing_*)
+    state.PauseTiming();
+    rigid::WorldData data = rigid::initialData(model);
+    data.profiling = true;
+    e0 = energyOf(model, data);
+    for (int k = 0; k < steps; ++k) {
+      const rigid::StepProfile before = data.profile;
+      const double cpu0 = threadCpuSeconds();
+      const auto wall0 = std::chrono::steady_clock::now();
+      const bool stepped = rigid::step(model, data, h).ok;
+      const double wallNs = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - wall0).count();
+      const double cpu = threadCpuSeconds() - cpu0;
+      if (!stepped) break;
+      ++ok;
+      swing.add(cpu, wallNs, before, data.profile);
+      // probes of the benchmark, not part of the step: out of the timed steps
+      for (const rigid::JointConstants& j : model.joints) {
+        drift = std::max(drift, (anchorOf(data, j.b, j.anchorB) - anchorOf(data, j.a, j.anchorA)).norm());
+        if (j.type == rigid::JointType::Revolute) {
+          const rigid::Vec3 u = axisOf(data, j.a, j.axisA), v = axisOf(data, j.b, j.axisB);
+          twist = std::max(twist, std::atan2(u.cross(v).norm(), u.dot(v)));
+        }
+      }
+      const double gain = energyOf(model, data) - e0;
+      worst = std::max(worst, std::abs(gain));
+      endGain = gain;
+      for (const rigid::BodyAux& a : data.aux) fastest = std::max(fastest, a.V.norm());
+    }
+    const rigid::JointConstants& last = model.joints.back();
+    tip = anchorOf(data, last.b, -last.anchorB);  // the last link's free end: its hinge's mirror
+    state.ResumeTiming();
+  }
+  const double runs = static_cast<double>(state.iterations());
+  windowCounters(state, "swing", swing, runs);
+  state.counters["steps_ok"] = static_cast<double>(ok) / runs;
+  state.counters["steps_planned"] = steps;
+  state.counters["sim_seconds"] = steps * h;
+  state.counters["step_s"] = h;
+  state.counters["joints"] = static_cast<double>(model.joints.size());
+  state.counters["max_drift_m"] = drift;
+  state.counters["max_axis_drift_rad"] = twist;
+  state.counters["energy_start_j"] = e0;
+  state.counters["max_energy_error_j"] = worst;
+  state.counters["energy_error_end_j"] = endGain;
+  state.counters["max_speed_mps"] = fastest;
+  state.counters["tip_x_m"] = tip.x();
+  state.counters["tip_z_m"] = tip.z();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -321,6 +408,12 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("BM_PileWide/1024", pileWindows, std::string("pile_wide_1024.json"), true)
       ->Unit(benchmark::kMillisecond)
       ->Iterations(1);
+  // the chain (reports/scenes.py's CHAIN_LINKS): 0.2 s for --quick, 2 s for the report
+  for (int ms : {200, 2000})
+    benchmark::RegisterBenchmark(("BM_Chain/100/" + std::to_string(ms)).c_str(), chain, std::string("chain_100.json"),
+                                 ms)
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -7,10 +7,13 @@ wide pile (BM_PileWide) has as many cubes as the largest but in columns as short
 pile of 100's, so that the growth from 100 cubes can be read at equal height as well as
 at the growing height of the cube-root piles. Tumbling bodies are the free bodies with
 collisions on: they can collide but, 3 m apart, touch nothing. No scene names a contact
-solver: there is one (the constraint solver).
+solver: there is one (the constraint solver). A chain of links hinged end to end
+(issue 41) starts horizontal and swings down under gravity: its joints are rows of the
+same solver, and MuJoCo runs it as a chain of hinges (reports.performance_peers).
 
   python -m reports.scenes DIR    writes DIR/free_<N>.json, DIR/pile_<N>.json,
-                                         DIR/pile_wide_<N>.json and DIR/tumbling_<N>.json
+                                         DIR/pile_wide_<N>.json, DIR/tumbling_<N>.json
+                                         and DIR/chain_<N>.json
   python -m reports.scenes DIR --tilt A,B
                                          the same with the piles' cubes tilted by another
                                          pattern (TILT's frequencies replaced by A and B):
@@ -22,7 +25,7 @@ import math
 import pathlib
 import sys
 
-from rigidfmu.scenes import body, diag, floor, scene
+from rigidfmu.scenes import G, body, diag, floor, scene
 
 FREE_COUNTS = (1, 10, 100, 1000, 10000)
 PILE_COUNTS = (10, 100, 1000)
@@ -34,6 +37,10 @@ EDGE = 0.1         # m, cube edge
 GAP = 0.02         # m, between neighbouring cubes at the start
 FREE_INERTIA = (1.0, 2.0, 3.0)  # kg m^2: asymmetric, so the bodies really tumble
 TILT = (1.7, 2.3)  # cube k tilted 0.05 sin(1.7 k) rad about x and 0.05 cos(2.3 k) about y
+CHAIN_LINKS = 100
+CHAIN_LINK = (0.1, 0.02, 0.02)  # m: a box along x, hinged at both ends of that edge
+CHAIN_LINK_MASS = 0.1           # kg
+CHAIN_STEP = 1e-3               # s, ours (rk4) and MuJoCo's (Euler and RK4)
 
 
 def free_scene(n):
@@ -115,6 +122,20 @@ def pile_wide_scene(n, tilt=TILT):
     return scene
 
 
+def chain_scene(n=CHAIN_LINKS):
+    """n boxes (CHAIN_LINK, CHAIN_LINK_MASS) laid end to end along +x from the origin,
+    at rest: link k from x = k a to (k + 1) a, hinged about y to the world at the origin
+    (link 0) or to link k - 1 at their shared end. Planar: it swings in the x-z plane.
+    No collisions (a hinge's two leaves touch), so the joints alone cost."""
+    a = CHAIN_LINK[0]
+    links = [body(f"link{k}", {"type": "box", "size": list(CHAIN_LINK)}, CHAIN_LINK_MASS,
+                  position=[(k + 0.5) * a, 0.0, 0.0], collision=False,
+                  outputs=["position", "orientation"], inputs=[]) for k in range(n)]
+    joints = [{"name": f"hinge{k}", "type": "revolute", "bodies": ["world" if k == 0 else f"link{k - 1}", f"link{k}"],
+               "anchor": [k * a, 0.0, 0.0], "axis": [0.0, 1.0, 0.0]} for k in range(n)]
+    return scene(f"Chain{n}", links, gravity=(0.0, 0.0, -G), step=CHAIN_STEP, joints=joints)
+
+
 def write(directory, tilt=TILT):
     d = pathlib.Path(directory)
     d.mkdir(parents=True, exist_ok=True)
@@ -126,6 +147,7 @@ def write(directory, tilt=TILT):
     for n in TUMBLING_COUNTS:
         (d / f"tumbling_{n}.json").write_text(json.dumps(tumbling_scene(n)))
         (d / f"driven_{n}.json").write_text(json.dumps(driven_scene(n)))
+    (d / f"chain_{CHAIN_LINKS}.json").write_text(json.dumps(chain_scene()))
 
 
 def main(argv):

@@ -18,9 +18,16 @@ the peers' own venv (.venv-peers, made by scripts/peers_venv.sh) and read back a
 - With --pile-timing N: only the CPU time of one simulated second of pile_<N> (Euler,
   one repeat), for the performance report's interleaved ratio (ours and MuJoCo's, round by round);
   with --at-rest too, of the third second (after 2 s untimed).
+- With --chain N: chain_<N>.json (links hinged end to end, issue 41) as nested bodies,
+  each on a hinge joint at its shared end with the one before (the same axis, mass and
+  inertia, no geoms so nothing collides), swinging down from horizontal for --T seconds
+  at the scene's step, with Euler and with RK4: the CPU time of one run each (mj_step
+  with nstep), and, in separate untimed runs, the energy (kinetic + potential,
+  mj_energyPos and mj_energyVel, J) at the start and its largest departure, and the
+  tip's position at the end. Generalized coordinates: the joints cannot drift.
 
 usage: python -m reports.performance_peers SCENES_DIR OUT.json [--quick] [--T 10] [--dts 1e-2,1e-3]
-                      [--pile-timing N [--at-rest]]"""
+                      [--pile-timing N [--at-rest]] [--chain N --T 2]"""
 import argparse
 import copy
 import json
@@ -57,6 +64,14 @@ FREE_BODY = ('    <body pos="{p}"><freejoint/>'
              '<inertial pos="0 0 0" mass="{m}" diaginertia="{I}"/></body>')
 
 
+CHAIN_MJCF = """<mujoco model="{name}">
+  <option timestep="{dt}" gravity="{g}" integrator="{integrator}"/>
+  <worldbody>
+{bodies}
+  </worldbody>
+</mujoco>"""
+
+
 def fmt(v):
     return " ".join(f"{x:.17g}" for x in v)
 
@@ -84,6 +99,77 @@ def pile_xml(scene, integrator):
                             integrator=integrator, memory=memory_for(len(bodies)),
                             half=0.5 * float(max(hi[0] - lo[0], hi[1] - lo[1])),
                             floor=fmt([centre[0], centre[1], hi[2]]), mu=mu, bodies="\n".join(bodies))
+
+
+def box_inertia(mass, size):
+    """The principal moments (kg m^2) of a solid box of edges `size` about its centre:
+    what our scene reader gives a box without an inertia."""
+    a, b, c = size
+    return [mass * (b * b + c * c) / 12, mass * (a * a + c * c) / 12, mass * (a * a + b * b) / 12]
+
+
+def chain_xml(scene, integrator):
+    """chain_<N>.json as MJCF: body k nested in body k - 1 (the joints' second bodies,
+    each hinged to the one before or to the world), frames at the links' centres and
+    unrotated at the start as ours are, each with a hinge at its anchor about its axis;
+    an explicit inertial (no geom: nothing to collide) and a site at the last link's
+    free end (its hinge's anchor mirrored through its centre)."""
+    bodies = {b["name"]: b for b in scene["bodies"]}
+    opened, parent_pos, lines = [], np.zeros(3), []
+    for k, j in enumerate(scene["joints"]):
+        parent = "world" if k == 0 else scene["joints"][k - 1]["bodies"][1]
+        assert j["type"] == "revolute" and j["bodies"][0] == parent
+        b = bodies[j["bodies"][1]]
+        assert b["shape"]["type"] == "box" and b.get("orientation", [1, 0, 0, 0]) == [1, 0, 0, 0]
+        pos = np.array(b["position"], dtype=float)
+        anchor = np.array(j["anchor"], dtype=float) - pos
+        indent = "    " + "  " * k
+        inertia = box_inertia(b["mass"], b["shape"]["size"])
+        lines.append(f'{indent}<body name="{b["name"]}" pos="{fmt(pos - parent_pos)}">'
+                     f'<joint name="{j["name"]}" type="hinge" pos="{fmt(anchor)}" axis="{fmt(j["axis"])}"/>'
+                     f'<inertial pos="0 0 0" mass="{b["mass"]}" diaginertia="{fmt(inertia)}"/>')
+        opened.append(indent)
+        parent_pos = pos
+    lines.append(f'{opened[-1]}  <site name="tip" pos="{fmt(-anchor)}"/>')
+    lines += [f"{indent}</body>" for indent in reversed(opened)]
+    return CHAIN_MJCF.format(name=scene["name"], dt=scene["solver"]["step"], g=fmt(scene["gravity"]),
+                             integrator=integrator, bodies="\n".join(lines))
+
+
+def energy(model, data):
+    """Kinetic + potential energy (J) of the state in `data`, the potential zero at the
+    origin as ours: mj_forward first, so that the positions' quantities are of this
+    state (mj_step leaves those of the step's start)."""
+    mujoco.mj_forward(model, data)
+    mujoco.mj_energyPos(model, data)
+    mujoco.mj_energyVel(model, data)
+    return float(data.energy[0] + data.energy[1])
+
+
+def chain(scene, T):
+    """The chain with Euler (MuJoCo's default) and RK4: CPU seconds per simulated second
+    of one timed run from rest, and from an untimed run the energy at the start, its
+    largest departure over the steps and at T (J), and the tip's position at T."""
+    out = {}
+    for integrator in ("Euler", "RK4"):
+        model = mujoco.MjModel.from_xml_string(chain_xml(scene, integrator))
+        dt = model.opt.timestep
+        steps = round(T / dt)
+        per_step = cpu_per_step(model, lambda: mujoco.MjData(model), steps, 1)
+        data = mujoco.MjData(model)
+        e0 = energy(model, data)
+        worst = 0.0
+        for _ in range(steps):
+            mujoco.mj_step(model, data)
+            gain = energy(model, data) - e0
+            worst = max(worst, abs(gain))
+        tip = data.site("tip").xpos
+        out[integrator] = {"dt": dt, "steps": steps, "us_per_step": per_step * 1e6,
+                           "s_per_simulated_s": per_step / dt, "energy_start_j": e0,
+                           "max_energy_error_j": worst, "energy_error_end_j": gain,
+                           "tip_x_m": float(tip[0]), "tip_z_m": float(tip[2]),
+                           "warnings": int(sum(w.number for w in data.warning))}
+    return out
 
 
 def free_xml(scene, integrator, dt, count=None):
@@ -208,9 +294,15 @@ def main(argv=None, prog=None):
     p.add_argument("--dts", default="1e-2,1e-3")
     p.add_argument("--pile-timing", type=int, help="time pile_<N> once and write only that")
     p.add_argument("--at-rest", action="store_true", help="with --pile-timing: time the third second")
+    p.add_argument("--chain", type=int, help="run chain_<N> for --T seconds and write only that")
     args = p.parse_args(argv)
     d = pathlib.Path(args.scenes)
     load = lambda name: json.loads((d / name).read_text())  # noqa: E731
+    if args.chain:
+        out = {"engine": f"MuJoCo {mujoco.__version__}", "n": args.chain, "T": args.T,
+               **chain(load(f"chain_{args.chain}.json"), args.T)}
+        pathlib.Path(args.out).write_text(json.dumps(out, indent=1))
+        return
     if args.pile_timing:
         model = mujoco.MjModel.from_xml_string(pile_xml(load(f"pile_{args.pile_timing}.json"), "Euler"))
         start = lambda: mujoco.MjData(model)  # noqa: E731

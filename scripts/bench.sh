@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# scripts/bench.sh [--quick] [--out DIR]
+# scripts/bench.sh [--quick] [--out DIR] [--chain-only]
 # The performance report (`scripts/bench.sh`): builds the core and its Google Benchmark
 # (rigid-bench-core) like build_fmu.sh (in build/, or $RIGIDFMU_BUILD), makes sure the
 # peers' venv (.venv-peers, MuJoCo) is there, then runs the core, FMU and MuJoCo
 # benchmarks in one run. Default: writes docs/reports/performance.md and docs/reports/performance/.
 # --quick: short runs for the test suite (no 10000 free bodies, no pile of 1000, and
 # MuJoCo only if .venv-peers already exists, since installing it is slow).
+# --chain-only: only the chain of hinged links beside MuJoCo (2 s, 5 interleaved rounds;
+# with --quick 0.2 s, one), its figures printed and no report written.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 [ -n "${RIGIDFMU_SKIP_SETUP:-}" ] || "$root/scripts/setup.sh"

@@ -20,11 +20,15 @@ here is asserted; the targets are printed with PASS or MISS.
    (Euler), the ratio its target is judged on; the wide pile (BM_PileWide); the two
    largest piles again with the cubes tilted by other patterns (OTHER_TILTS), since a
    fall is chaotic and one fall's growth may be its own.
-5. Writes OUT/performance.md, OUT/performance/*.png and OUT/performance/bench.json.
+5. A chain of 100 links hinged end to end (issue 41) swinging down from horizontal for
+   2 s (0.2 s in quick mode), h = 1 ms: ours (BM_Chain, rk4) and MuJoCo's (a chain of
+   hinge joints, Euler and RK4) timed round by round, the ratio to MuJoCo's Euler its
+   target is judged on; our joints' drift and both engines' energy error.
+6. Writes OUT/performance.md, OUT/performance/*.png and OUT/performance/bench.json.
 
 Times are CPU times (the machine is shared), medians of repeats.
 
-usage: scripts/bench.sh [--quick] [--out DIR] [--build BUILD_DIR]"""
+usage: scripts/bench.sh [--quick] [--out DIR] [--build BUILD_DIR] [--chain-only]"""
 import argparse
 import json
 import math
@@ -57,6 +61,8 @@ RK4_TARGET_NS = 100.0        # ns per body-step, free bodies, rk4, N = 1000
 COLLIDING_RATIO_TARGET = 1.3  # bodies that can collide but touch nothing, over free ones (FMU)
 PILE_RATIO_TARGET = 0.5      # our time per simulated second / MuJoCo's, pile of 1000
 PENETRATION_TARGET = 1e-3    # m
+CHAIN_RATIO_TARGET = 1.0     # our time per simulated second / MuJoCo's (Euler), chain of 100 (issue 41)
+DRIFT_TARGET = 1e-3          # m, the chain's joints apart
 # the stages of WorldData::profile, in the 3 s piles' section's order
 STAGES = ("integration", "broadphase", "narrowphase", "response")
 # the step's stages in the order it runs them (src/world.h, Stage): the benchmark's
@@ -109,6 +115,8 @@ def run_core(build, scenes, quick, pattern=None, reps=1):
                 key = ("awake", int(parts[1]))
             elif parts[0] == "BM_PileWide":
                 key = ("wide", int(parts[1]))
+            elif parts[0] == "BM_Chain":
+                key = ("chain", int(parts[1]), int(parts[2]))
             else:
                 key = ("pile", int(parts[1]))
             results[key] = b
@@ -163,22 +171,30 @@ def window_figures(b):
            "max_speed_1s_mps": b["max_speed_1s_mps"], "max_speed_3s_mps": b["max_speed_3s_mps"],
            "asleep_3s": b.get("asleep_3s", 0.0)}
     for w in ("fall", "rest"):
-        steps, cpu, wall = b[f"{w}_steps"], b[f"{w}_cpu_s"], b[f"{w}_wall_ns"]
-        shares = {s: b[f"{w}_ns_{s}"] / wall if wall > 0 else math.nan for s in STAGES}
-        shares["other"] = 1.0 - sum(shares.values())
-        stage_shares = {s: b[f"{w}_ns_stage_{s}"] / wall if wall > 0 else math.nan for s in STEP_STAGES}
-        stage_shares["other"] = 1.0 - sum(stage_shares.values())
-        solves = b[f"{w}_solves"]
-        out[w] = {"steps": steps,
-                  # a window cut short by a failed step: the time of the steps it has
-                  "s_per_simulated_s": cpu / (steps * bench_scenes.PILE_STEP) if steps else math.nan,
-                  "us_per_step": cpu / steps * 1e6 if steps else math.nan,
-                  "shares": shares, "stage_shares": stage_shares,
-                  "solves_per_step": solves / steps if steps else math.nan,
-                  # the contact points a solve answered, each through the same fixed
-                  # sub-steps and relax pass; none when no solve ran (every island asleep)
-                  "points_per_solve": b[f"{w}_points_per_solve"] if solves else 0.0}
+        out[w] = window_of(b, w, bench_scenes.PILE_STEP)
     return out
+
+
+def window_of(b, w, h):
+    """One timed window `w` of a benchmark entry whose steps are h long (BM_PileWindows'
+    fall and rest, BM_Chain's swing): the CPU time per simulated second and per step,
+    the stages' shares of the steps' wall time, the solves per step and the contact
+    points per solve."""
+    steps, cpu, wall = b[f"{w}_steps"], b[f"{w}_cpu_s"], b[f"{w}_wall_ns"]
+    shares = {s: b[f"{w}_ns_{s}"] / wall if wall > 0 else math.nan for s in STAGES}
+    shares["other"] = 1.0 - sum(shares.values())
+    stage_shares = {s: b[f"{w}_ns_stage_{s}"] / wall if wall > 0 else math.nan for s in STEP_STAGES}
+    stage_shares["other"] = 1.0 - sum(stage_shares.values())
+    solves = b[f"{w}_solves"]
+    return {"steps": steps,
+            # a window cut short by a failed step: the time of the steps it has
+            "s_per_simulated_s": cpu / (steps * h) if steps else math.nan,
+            "us_per_step": cpu / steps * 1e6 if steps else math.nan,
+            "shares": shares, "stage_shares": stage_shares,
+            "solves_per_step": solves / steps if steps else math.nan,
+            # the contact points a solve answered, each through the same fixed
+            # sub-steps and relax pass; none when no solve ran (every island asleep)
+            "points_per_solve": b[f"{w}_points_per_solve"] if solves else 0.0}
 
 
 def median_entry(entries):
@@ -256,6 +272,95 @@ def run_wide(build, scenes, quick):
         return {}
     wide, _ = run_core(build, scenes, quick, pattern=f"^BM_PileWide/{bench_scenes.WIDE_PILE}/", reps=3)
     return {k[1]: window_figures(b) for k, b in sorted(wide.items())}
+
+
+def chain_energy_scale(n=bench_scenes.CHAIN_LINKS):
+    """M g L (J) of the chain: its mass, gravity and its length; the energy errors are
+    given as fractions of it."""
+    return (n * bench_scenes.CHAIN_LINK_MASS) * bench_scenes.G * (n * bench_scenes.CHAIN_LINK[0])
+
+
+def chain_figures(b):
+    """Our figures of one BM_Chain entry: the swing's timing and stages (window_of), the
+    joints' drift, the energy error as a fraction of chain_energy_scale, the tip at the
+    end."""
+    scale = chain_energy_scale(round(b["joints"]))
+    return {"steps_ok": b["steps_ok"], "steps": b["steps_planned"], "step_s": b["step_s"],
+            "sim_seconds": b["sim_seconds"], **window_of(b, "swing", b["step_s"]),
+            "max_drift_m": b["max_drift_m"], "max_axis_drift_rad": b["max_axis_drift_rad"],
+            "max_energy_error": b["max_energy_error_j"] / scale, "energy_error_end": b["energy_error_end_j"] / scale,
+            "max_speed_mps": b["max_speed_mps"], "tip_m": [b["tip_x_m"], b["tip_z_m"]]}
+
+
+def run_chain(build, scenes, folder, quick):
+    """The chain of bench_scenes.CHAIN_LINKS links over 2 s (0.2 s in quick mode): ours
+    (BM_Chain) once, then MuJoCo's (Euler and RK4, performance_peers --chain) once, each
+    in its own process, round by round (5 rounds, 1 in quick mode); without MuJoCo, ours
+    alone. Our figures are the medians over the rounds (drift and energy are the same in
+    every round: a run is deterministic), MuJoCo's timings too, its energy figures those
+    of the last round's untimed runs. Ratios: each round's ours over its MuJoCo's; the
+    median."""
+    n, ms, rounds = bench_scenes.CHAIN_LINKS, 200 if quick else 2000, 1 if quick else 5
+    T = ms * 1e-3
+    runs, rows, theirs = [], [], None
+    for _ in range(rounds):
+        ours, _ = run_core(build, scenes, quick, pattern=f"^BM_Chain/{n}/{ms}/", reps=1)
+        runs.append(ours[("chain", n, ms)])
+        mine = chain_figures(runs[-1])["s_per_simulated_s"]
+        if not PEERS_PYTHON.exists():
+            continue
+        out = pathlib.Path(folder) / "chain.json"
+        subprocess.run([str(PEERS_PYTHON), "-m", "reports.performance_peers", str(scenes), str(out),
+                        "--chain", str(n), "--T", f"{T:g}"], check=True)
+        theirs = json.loads(out.read_text())
+        euler, rk4 = theirs["Euler"]["s_per_simulated_s"], theirs["RK4"]["s_per_simulated_s"]
+        rows.append({"ours": mine, "mujoco": euler, "ratio": mine / euler, "mujoco_rk4": rk4, "ratio_rk4": mine / rk4})
+        log(f"chain {n} over {T:g} s, round {len(rows)}: ours {fmt_s(mine)}, MuJoCo Euler {fmt_s(euler)}, "
+            f"RK4 {fmt_s(rk4)} per simulated s; ratio to Euler {mine / euler:.2f}, to RK4 {mine / rk4:.2f}")
+    mujoco = None
+    if theirs:
+        scale = chain_energy_scale(n)
+        mujoco = {"engine": theirs["engine"]}
+        for integrator in ("Euler", "RK4"):
+            m = theirs[integrator]
+            mujoco[integrator] = {
+                "step_s": m["dt"], "warnings": m["warnings"], "tip_m": [m["tip_x_m"], m["tip_z_m"]],
+                "s_per_simulated_s": statistics.median(r["mujoco" if integrator == "Euler" else "mujoco_rk4"]
+                                                       for r in rows),
+                "max_energy_error": m["max_energy_error_j"] / scale,
+                "energy_error_end": m["energy_error_end_j"] / scale}
+            mujoco[integrator]["us_per_step"] = mujoco[integrator]["s_per_simulated_s"] * m["dt"] * 1e6
+    ours = chain_figures(runs[0])
+    for key in ("s_per_simulated_s", "us_per_step"):  # the timings: medians over the rounds
+        ours[key] = statistics.median(chain_figures(b)[key] for b in runs)
+    return {"n": n, "T": T, "step_s": ours["step_s"], "energy_scale_j": chain_energy_scale(n),
+            "ours": ours, "mujoco": mujoco, "rounds": rows,
+            "ratio": statistics.median(r["ratio"] for r in rows) if rows else None,
+            "ratio_rk4": statistics.median(r["ratio_rk4"] for r in rows) if rows else None}
+
+
+def chain_targets(chain):
+    """Issue 41's: the chain's time per simulated second against MuJoCo's Euler at the
+    same step (judged on the interleaved rounds), and its joints' drift."""
+    n, T = chain["n"], chain["T"]
+    ours = chain["ours"]
+    label = (f"chain of {n} swinging from horizontal (0–{T:g} s, h = {chain['step_s'] * 1e3:g} ms): time per "
+             f"simulated second ≤ {CHAIN_RATIO_TARGET:g}x MuJoCo's (Euler)")
+    if chain["ratio"] is not None:
+        rounds = ", ".join(f"{r['ratio']:.2f}" for r in chain["rounds"])
+        rows = [(label, f"ratio {chain['ratio']:.2f}, the median of {len(chain['rounds'])} interleaved rounds "
+                        f"({rounds}): {fmt_s(ours['s_per_simulated_s'])} vs "
+                        f"{fmt_s(chain['mujoco']['Euler']['s_per_simulated_s'])}",
+                 "PASS" if chain["ratio"] <= CHAIN_RATIO_TARGET else "MISS")]
+    else:
+        rows = [(label, f"not measured (no MuJoCo); ours {fmt_s(ours['s_per_simulated_s'])}", "–")]
+    complete = ours["steps_ok"] == ours["steps"]
+    rows.append((f"chain of {n}: joint drift < {DRIFT_TARGET * 1e3:g} mm",
+                 f"{ours['max_drift_m'] * 1e3:.3f} mm, the largest over joints and steps (hinge axes apart: "
+                 f"{ours['max_axis_drift_rad']:.2g} rad at most)"
+                 + ("" if complete else f" (a step failed: {ours['steps_ok']:.0f} of {ours['steps']:.0f} steps)"),
+                 "PASS" if complete and ours["max_drift_m"] < DRIFT_TARGET else "MISS"))
+    return rows
 
 
 # ----------------------------------------------------------------------------------
@@ -708,7 +813,7 @@ def render(r):
     """The report's Markdown from its figures (the dict main writes to bench.json): a
     pure function of them, so that a saved bench.json renders again (load_report)."""
     return template.fill("performance", {**header_values(r), **core_values(r), "mujoco": mujoco_section(r),
-                                         **windows_values(r)})
+                                         **windows_values(r), **chain_values(r)})
 
 
 def write_markdown(path, r):
@@ -905,6 +1010,47 @@ def mujoco_at_rest_values(r):
             if il else ""}
 
 
+def chain_values(r):
+    """The chain of hinged links: its targets, ours beside MuJoCo's Euler and RK4, the
+    interleaved rounds and where our step goes."""
+    chain = r["chain"]
+    ours, mj, nm = chain["ours"], chain["mujoco"], "not measured"
+
+    def energy(x):
+        return [f"{x['max_energy_error']:.2g}", f"{x['energy_error_end']:+.2g}"]
+
+    def tip(x):
+        return f"({x['tip_m'][0]:.3f}, {x['tip_m'][1]:.3f}) m"
+    rows = [["rigidfmu rk4", f"{ours['step_s'] * 1e3:g} ms", f"{ours['us_per_step']:.1f} µs",
+             f"**{fmt_s(ours['s_per_simulated_s'])}**", "–", f"{ours['max_drift_m'] * 1e3:.3f} mm", *energy(ours),
+             tip(ours)]]
+    for integrator, ratio in (("Euler", chain["ratio"]), ("RK4", chain["ratio_rk4"])):
+        m = (mj or {}).get(integrator)
+        rows.append([f"{mj['engine'] if mj else 'MuJoCo'} {integrator}",
+                     *([f"{m['step_s'] * 1e3:g} ms", f"{m['us_per_step']:.1f} µs", fmt_s(m["s_per_simulated_s"]),
+                        f"**{ratio:.2f}**", "none (generalized coordinates)", *energy(m), tip(m)] if m else
+                       [nm] * 8)])
+    rounds = [[str(k), fmt_s(x["ours"]), fmt_s(x["mujoco"]), fmt_s(x["mujoco_rk4"]), f"{x['ratio']:.2f}",
+               f"{x['ratio_rk4']:.2f}"] for k, x in enumerate(chain["rounds"], 1)]
+    stages = [pct(ours["stage_shares"][k]) for k in STEP_STAGES + ("other",)]
+    return {
+        "n": chain["n"], "link": " x ".join(f"{x:g}" for x in bench_scenes.CHAIN_LINK),
+        "link_mass": f"{bench_scenes.CHAIN_LINK_MASS:g}", "T": f"{chain['T']:g}",
+        "step": f"{chain['step_s'] * 1e3:g} ms", "max_speed": f"{ours['max_speed_mps']:.3g} m/s",
+        "energy_scale": f"{chain['energy_scale_j']:.4g} J",
+        "chain_targets_table": verdicts(r["chain_targets"]),
+        "chain_mujoco": block("chain_mujoco", engine=mj["engine"]) if mj else block("chain_mujoco_absent"),
+        "chain_table": table(["engine, integrator", "step", "per step", "per simulated second", "ratio ours/theirs",
+                              "joint drift, max", "energy error, max", "energy error at T", "tip at T (x, z)"],
+                             "lrrrrrrrr", rows),
+        "chain_rounds": block("chain_rounds", ratio=f"{chain['ratio']:.2f}", ratio_rk4=f"{chain['ratio_rk4']:.2f}",
+                              rounds_table=table(["round", "ours per simulated second", "MuJoCo Euler", "MuJoCo RK4",
+                                                  "ratio to Euler", "ratio to RK4"], "rrrrrr", rounds))
+        if chain["rounds"] else "",
+        "chain_stages_table": table(["run", *STEP_STAGES, "other"], "l" + "r" * (len(STEP_STAGES) + 1),
+                                    [[f"ours, 0–{chain['T']:g} s", *stages]])}
+
+
 def load_report(path):
     """The figures a run saved (bench.json) as main holds them, to render again: JSON
     keeps a count only as a string, and a target row only as a list."""
@@ -916,9 +1062,30 @@ def load_report(path):
     for key in ("piles", "fmu", "windows", "windows_awake", "windows_wide"):
         r[key] = counts(r.get(key))
     r["windows_tilts"] = {tilt: counts(piles) for tilt, piles in (r.get("windows_tilts") or {}).items()}
-    for key in ("targets", "windows_targets", "windows_checks"):
+    for key in ("targets", "windows_targets", "windows_checks", "chain_targets"):
         r[key] = [tuple(row) for row in r.get(key) or []]
     return r
+
+
+def log_chain(chain):
+    """The chain's figures, for the console."""
+    ours, mj, T = chain["ours"], chain["mujoco"], chain["T"]
+    log(f"\n== chain of {chain['n']} hinged links from horizontal, 0-{T:g} s, h = {chain['step_s'] * 1e3:g} ms "
+        f"(BM_Chain; energy errors as fractions of M g L = {chain['energy_scale_j']:.4g} J)")
+    log(f"  ours (rk4): {fmt_s(ours['s_per_simulated_s'])} per simulated s ({ours['us_per_step']:.1f} us/step); "
+        f"drift {ours['max_drift_m'] * 1e3:.3f} mm; energy error max {ours['max_energy_error']:.3g}, at "
+        f"{T:g} s {ours['energy_error_end']:+.3g}; fastest body {ours['max_speed_mps']:.3g} m/s; tip at "
+        f"({ours['tip_m'][0]:.4f}, {ours['tip_m'][1]:.4f}) m")
+    log("    stages: " + ", ".join(f"{k} {pct(ours['stage_shares'][k])}" for k in STEP_STAGES + ("other",)))
+    if mj is None:
+        log("  MuJoCo: not measured (no .venv-peers)")
+        return
+    for integrator, ratio in (("Euler", chain["ratio"]), ("RK4", chain["ratio_rk4"])):
+        m = mj[integrator]
+        log(f"  {mj['engine']} {integrator}: {fmt_s(m['s_per_simulated_s'])} per simulated s "
+            f"({m['us_per_step']:.1f} us/step), ours/theirs {ratio:.2f}; energy error max "
+            f"{m['max_energy_error']:.3g}, at {T:g} s {m['energy_error_end']:+.3g}; tip at "
+            f"({m['tip_m'][0]:.4f}, {m['tip_m'][1]:.4f}) m")
 
 
 def main(argv=None, prog=None):
@@ -927,6 +1094,8 @@ def main(argv=None, prog=None):
     p.add_argument("--out", default=str(ROOT / "docs" / "reports"),
                    help="writes OUT/performance.md and OUT/performance/")
     p.add_argument("--build", default=os.environ.get("RIGIDFMU_BUILD", str(ROOT / "build")))
+    p.add_argument("--chain-only", action="store_true",
+                   help="only the chain of hinged links (5.): its figures and targets printed, no report written")
     args = p.parse_args(argv)
     t_start = time.perf_counter()
     build = pathlib.Path(args.build).resolve()
@@ -936,6 +1105,13 @@ def main(argv=None, prog=None):
                  "scripts/bench.sh does both)")
     scenes = build / "bench-scenes"
     bench_scenes.write(scenes)
+    if args.chain_only:
+        with tempfile.TemporaryDirectory() as tmp:
+            chain = run_chain(build, scenes, pathlib.Path(tmp), args.quick)
+        log_chain(chain)
+        for label, value, status in chain_targets(chain):
+            log(f"  {status:5s} {label}: {value}")
+        return 0
     repeats = 3 if args.quick else 7
     T = 2.0 if args.quick else 10.0
     mj_dts = (1e-2, 1e-3)
@@ -973,6 +1149,8 @@ def main(argv=None, prog=None):
         windows_wide = run_wide(build, scenes, args.quick)
         log("== the falling piles under other tilt patterns (BM_PileWindows)")
         windows_tilts = run_tilts(build, folder, args.quick)
+        log("== a chain of hinged links swinging from horizontal (BM_Chain), ours and MuJoCo's interleaved")
+        chain = run_chain(build, scenes, folder, args.quick)
     if peers is None:
         log("MuJoCo: not measured (no .venv-peers; scripts/bench.sh without --quick creates it)")
     accuracy = {"T": T, "omega0": [float(x) for x in omega0], "ours": ours, "mujoco": [], "equal_accuracy": []}
@@ -984,6 +1162,7 @@ def main(argv=None, prog=None):
     rows = targets(free, piles, peers, interleaved, colliding)
     wrows = windows_targets(windows, peers, windows_il) + equal_height_targets(windows, windows_wide)
     wchecks = windows_checks(windows, windows_il, windows_awake)
+    crows = chain_targets(chain)
     meta = {"quick": args.quick, "date": time.strftime("%Y-%m-%d %H:%M %Z"), "cpu": cpu_name(),
             "python": f"Python {platform.python_version()}", "repeats": repeats,
             "benchmark_library": f"1.7 ({context.get('library_build_type', '?')} build, Debian)",
@@ -994,6 +1173,7 @@ def main(argv=None, prog=None):
               "windows": windows, "windows_interleaved": windows_il, "windows_targets": wrows,
               "windows_checks": wchecks,
               "windows_awake": windows_awake, "windows_wide": windows_wide, "windows_tilts": windows_tilts,
+              "chain": chain, "chain_targets": crows,
               "accuracy": accuracy, "targets": rows, "meta": meta}
     fig_dir = out / "performance"
     files = plots(fig_dir, free, piles, peers, windows)
@@ -1001,7 +1181,7 @@ def main(argv=None, prog=None):
     write_markdown(out / "performance.md", report)
 
     log("\n== targets (figures, never asserted)")
-    for label, value, status in rows + wrows:
+    for label, value, status in rows + wrows + crows:
         log(f"  {status:5s} {label}: {value}")
     log("== checks beside them (figures, not targets)")
     for label, value, status in wchecks:
@@ -1039,6 +1219,7 @@ def main(argv=None, prog=None):
             f"(median of {len(windows_il['rounds'])} interleaved rounds)")
     if peers is None:
         log("  MuJoCo: not measured (no .venv-peers): its columns say \"not measured\"")
+    log_chain(chain)
     log(f"wrote {out / 'performance.md'}, {', '.join(str(f) for f in files)} "
         f"({time.perf_counter() - t_start:.0f} s)")
     return 0

@@ -1,7 +1,7 @@
 """scripts/bench.sh --quick: the performance report runs and is complete (every method
-and body count, the pile phases, the piles falling and at rest, the FMU costs, MuJoCo's
-ratios when its venv is there, the plots). Times are figures: none is asserted, only that
-each is measured (finite and positive)."""
+and body count, the pile phases, the piles falling and at rest, the chain of hinged
+links, the FMU costs, MuJoCo's ratios when its venv is there, the plots). Times are
+figures: none is asserted, only that each is measured (finite and positive)."""
 import json
 import math
 import os
@@ -177,13 +177,53 @@ def test_mujoco_side_by_side(quick):
         assert e["ratio"] is None or measured(e["ratio"])
 
 
+def test_chain_of_hinges_beside_mujoco(quick):
+    """The chain of 100 hinged links (issue 41), 0.2 s in quick mode: our time, drift and
+    energy error measured, every step taken; MuJoCo's Euler and RK4 beside it, round by
+    round, when its venv is there, on the same chain (its tip where ours is)."""
+    _, _, r = quick
+    c = r["chain"]
+    assert c["n"] == 100 and c["T"] == 0.2 and c["step_s"] == 1e-3
+    ours = c["ours"]
+    assert ours["steps_ok"] == ours["steps"] == 200, "the chain: a step failed"
+    for key in ("s_per_simulated_s", "us_per_step", "max_drift_m", "max_energy_error", "max_speed_mps"):
+        assert measured(ours[key]), key
+    assert math.isfinite(ours["energy_error_end"]) and abs(ours["energy_error_end"]) <= ours["max_energy_error"]
+    assert math.isfinite(ours["max_axis_drift_rad"]) and ours["max_axis_drift_rad"] >= 0
+    assert ours["solves_per_step"] >= 1  # the joints are solved in every step
+    stages = ours["stage_shares"]
+    assert stages["solve"] > 0 and math.isclose(sum(stages.values()), 1.0, rel_tol=1e-9)
+    labels = [row[0] for row in r["chain_targets"]]
+    assert any("chain of 100 swinging from horizontal" in x and "MuJoCo's (Euler)" in x for x in labels)
+    assert any(x.startswith("chain of 100: joint drift < 1 mm") for x in labels)
+    if not HAVE_PEERS:
+        assert c["mujoco"] is None and c["ratio"] is None
+        return
+    assert c["mujoco"]["engine"].startswith("MuJoCo") and len(c["rounds"]) == 1
+    for integrator in ("Euler", "RK4"):
+        m = c["mujoco"][integrator]
+        assert m["step_s"] == c["step_s"] and measured(m["s_per_simulated_s"]) and measured(m["us_per_step"])
+        assert measured(m["max_energy_error"]) and m["warnings"] == 0, integrator
+        # the same chain: after 0.2 s its tip (still near free fall) is where ours is
+        assert math.dist(m["tip_m"], ours["tip_m"]) < 1e-2, (integrator, m["tip_m"], ours["tip_m"])
+    for row in c["rounds"]:
+        assert measured(row["ours"]) and measured(row["mujoco"]) and measured(row["mujoco_rk4"])
+        assert math.isclose(row["ratio"], row["ours"] / row["mujoco"], rel_tol=1e-12)
+    assert measured(c["ratio"]) and measured(c["ratio_rk4"])
+
+
 def test_markdown_and_plots(quick):
     proc, out, r = quick
     text = (out / "performance.md").read_text()
     for section in ("## Targets", "## Core: free bodies", "## Core: piles of cubes",
                     "## Through FMI", "## Beside MuJoCo", "## Piles over 3 s: falling and at rest",
-                    "## How it is measured"):
+                    "## A chain of hinged links", "## How it is measured"):
         assert section in text
+    chain = text[text.index("## A chain of hinged links"):text.index("## How it is measured")]
+    for label, _, _ in r["chain_targets"]:
+        assert f"| {label} |" in chain
+    assert "| rigidfmu rk4 | 1 ms |" in chain and "| ours, 0–0.2 s |" in chain
+    assert ("**Interleaved.**" in chain) == HAVE_PEERS and ("not measured" in chain) != HAVE_PEERS
     # the piles' section: its targets, a row per pile, the stages falling and at rest,
     # and its MuJoCo table (with "not measured" where MuJoCo was not)
     windows = text[text.index("## Piles over 3 s: falling and at rest"):text.index("## How it is measured")]
@@ -206,7 +246,7 @@ def test_markdown_and_plots(quick):
     for m in METHODS:
         assert f"| `{m}` |" in text
     assert "targets (figures, never asserted)" in proc.stdout
-    statuses = [row[2] for row in r["targets"] + r["windows_targets"] + r["windows_checks"]]
+    statuses = [row[2] for row in r["targets"] + r["windows_targets"] + r["windows_checks"] + r["chain_targets"]]
     assert statuses and set(statuses) <= {"PASS", "MISS", "–"}
     if HAVE_PEERS:
         assert "ratio ours/theirs" in text

@@ -633,7 +633,6 @@ ConstraintReport solveConstraints(const WorldModel& model, const WorldData& data
       solvePass(s, hSub, false);
     }
     addSubstepImpulses(s);
-    if (extra) extra->endSubstep();
   }
   store(s, std::max(1e-5, 0.01 * restingSpeed), stored);
   pushSurfaces(s, impulses);

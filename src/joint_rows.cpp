@@ -93,7 +93,19 @@ struct Work {
   double coordinate = 0.0;          // now
   double motorSpeed = 0.0, target = 0.0;
   Vec3 rB = Vec3::Zero();
-  Vec3 impulse = Vec3::Zero(), angularImpulse = Vec3::Zero();  // on b, about its anchor, over the step
+  // What the joint gave the bodies over the step, summed as it was applied: the impulse
+  // on b, its moment about b's anchor, and the angular impulses about a's and b's centres.
+  Vec3 impulse = Vec3::Zero(), angularImpulse = Vec3::Zero();
+  Vec3 turnA = Vec3::Zero(), turnB = Vec3::Zero();
+
+  // The impulse `amount` along row J on both bodies, and into the step's sums.
+  void push(Body& A, Body& B, const Jacobian& J, double amount) {
+    applyImpulse(A, B, J, amount);
+    impulse += amount * J.linear;
+    angularImpulse += amount * (J.angularB - rB.cross(J.linear));
+    turnA += amount * J.angularA;
+    turnB += amount * J.angularB;
+  }
 };
 
 // Every row of a joint for the bodies' poses now.
@@ -157,7 +169,7 @@ void solveBlock(Work& w, int first, int n, Body& A, Body& B, const Softness& sof
   const double massScale = useBias ? soft.massScale : 1.0, impulseScale = useBias ? soft.impulseScale : 0.0;
   const Vec3 impulse = -massScale * K.inverse() * rhs - impulseScale * lambda;
   for (int x = 0; x < n; ++x) {
-    applyImpulse(A, B, w.row[first + x], impulse[x]);
+    w.push(A, B, w.row[first + x], impulse[x]);
     w.lambda[first + x] += impulse[x];
   }
 }
@@ -177,7 +189,7 @@ void solveLimit(Work& w, int k, Body& A, Body& B, const Softness& soft, double h
   const double mass = 1.0 / coupling(A, B, J, J);
   const double impulse = -mass * massScale * (velocityAlong(A, B, J) + bias) - impulseScale * w.lambda[k];
   const double total = std::max(w.lambda[k] + impulse, 0.0);
-  applyImpulse(A, B, J, total - w.lambda[k]);
+  w.push(A, B, J, total - w.lambda[k]);
   w.lambda[k] = total;
 }
 
@@ -189,14 +201,14 @@ void solveDrive(Work& w, Body& A, Body& B, double hSub) {
     const Softness s = makeSpring(j.stiffness, j.damping, mass, hSub);
     const double impulse = -s.massScale * mass * (velocityAlong(A, B, w.row[kSpring]) + s.biasRate * w.error[kSpring]) -
                            s.impulseScale * w.lambda[kSpring];
-    applyImpulse(A, B, w.row[kSpring], impulse);
+    w.push(A, B, w.row[kSpring], impulse);
     w.lambda[kSpring] += impulse;
   }
   if (w.on[kMotor]) {
     const double most = j.maxMotorForce * hSub;
     const double wanted = w.lambda[kMotor] - mass * (velocityAlong(A, B, w.row[kMotor]) - w.motorSpeed);
     const double total = std::clamp(wanted, -most, most);
-    applyImpulse(A, B, w.row[kMotor], total - w.lambda[kMotor]);
+    w.push(A, B, w.row[kMotor], total - w.lambda[kMotor]);
     w.lambda[kMotor] = total;
   }
 }
@@ -236,7 +248,7 @@ class JointRows final : public ExtraRows {
         const Quat qA = j.a >= 0 ? data.Y[j.a].q.normalized() : Quat::Identity();
         w.raw0 = rawAngle(relativeTurn(j, qA, data.Y[j.b].q.normalized()), qA * j.axisA);
       }
-      w.impulse = w.angularImpulse = Vec3::Zero();
+      w.impulse = w.angularImpulse = w.turnA = w.turnB = Vec3::Zero();
     }
   }
 
@@ -256,9 +268,7 @@ class JointRows final : public ExtraRows {
         const double approach = velocityAlong(A, B, w.row[k]);
         if (!w.on[k] || !(approach < -restingSpeed) || w.error[k] > -approach * h) continue;
         const double j = -(1.0 + w.joint->restitution) * approach / coupling(A, B, w.row[k], w.row[k]);
-        applyImpulse(A, B, w.row[k], j);
-        w.impulse += j * w.row[k].linear;
-        w.angularImpulse += j * (w.row[k].angularB - w.rB.cross(w.row[k].linear));
+        w.push(A, B, w.row[k], j);
         struck = true;
       }
     }
@@ -271,7 +281,7 @@ class JointRows final : public ExtraRows {
       Body& B = bodies[w.b];
       build(w, A, B);
       for (int k = 0; k < kJointRows; ++k)
-        if (w.on[k]) applyImpulse(A, B, w.row[k], w.lambda[k]);
+        if (w.on[k]) w.push(A, B, w.row[k], w.lambda[k]);
     }
   }
 
@@ -290,25 +300,14 @@ class JointRows final : public ExtraRows {
     }
   }
 
-  // The sub-step's impulses on b: its force, and the moment about its anchor.
-  void endSubstep() override {
-    for (Work& w : work_) {
-      Vec3 linear = Vec3::Zero(), angular = Vec3::Zero();
-      for (int k = 0; k < kJointRows; ++k) {
-        if (!w.on[k]) continue;
-        linear += w.lambda[k] * w.row[k].linear;
-        angular += w.lambda[k] * w.row[k].angularB;
-      }
-      w.impulse += linear;
-      w.angularImpulse += angular - w.rB.cross(linear);
-    }
-  }
-
-  void commit(WorldData& data) const {
+  void commit(WorldData& data, ContactImpulses& contacts) const {
     for (size_t k = 0; k < work_.size(); ++k) {
-      data.joints.memory[k] = work_[k].lambda;
-      data.joints.impulse[k] += work_[k].impulse;
-      data.joints.angularImpulse[k] += work_[k].angularImpulse;
+      const Work& w = work_[k];
+      data.joints.memory[k] = w.lambda;
+      data.joints.impulse[k] += w.impulse;
+      data.joints.angularImpulse[k] += w.angularImpulse;
+      contacts.linear[w.b] -= w.impulse, contacts.angular[w.b] -= w.turnB;
+      if (w.a != static_) contacts.linear[w.a] += w.impulse, contacts.angular[w.a] += w.turnA;
     }
   }
 
@@ -322,7 +321,9 @@ class JointRows final : public ExtraRows {
 
 std::unique_ptr<ExtraRows> makeJointRows(const WorldModel& model) { return std::make_unique<JointRows>(model); }
 
-void commitJoints(const ExtraRows& rows, WorldData& data) { static_cast<const JointRows&>(rows).commit(data); }
+void commitJoints(const ExtraRows& rows, WorldData& data, ContactImpulses& contacts) {
+  static_cast<const JointRows&>(rows).commit(data, contacts);
+}
 
 void measureJoints(const WorldModel& model, WorldData& data) {
   for (size_t k = 0; k < model.joints.size(); ++k) {

@@ -17,6 +17,7 @@ namespace rigid {
 
 struct WorldModel;
 struct WorldData;
+struct ContactImpulses;
 
 namespace joint_solver {
 // Twice the contacts' stiffness (constraint_solver.h), as Box2D v3 has it: at the
@@ -30,8 +31,10 @@ constexpr double kJointDampingRatio = 2.0;
 std::unique_ptr<ExtraRows> makeJointRows(const WorldModel& model);
 
 // After a step whose last solve had `rows` is committed: the rows' impulses into
-// data.joints.memory (the next step's warm start), their reactions into the sums.
-void commitJoints(const ExtraRows& rows, WorldData& data);
+// data.joints.memory (the next step's warm start), their reactions into the sums, and
+// out of `contacts`, the solve's impulses on the bodies (a body's contact loads are
+// its contacts' alone; its joints report their own).
+void commitJoints(const ExtraRows& rows, WorldData& data, ContactImpulses& contacts);
 
 // The joints' coordinates and speeds of data.Y into data.joints (a revolute angle
 // counted on through every turn from the last one's).

@@ -101,7 +101,8 @@ inline void applyImpulse(Body& A, Body& B, const Jacobian& j, double lambda) {
 
 // Rows that join a solve beside the contacts' (the joints', joint_rows.h), called at
 // the same places as the contacts' rows: the solver prepares the bodies they name,
-// then in each sub-step warm-starts, solves (with and without the bias) and sums them.
+// answers their impacts with the contacts', then in each sub-step warm-starts them and
+// solves them (with and without the bias). They sum what they apply themselves.
 class ExtraRows {
  public:
   virtual ~ExtraRows() = default;
@@ -114,7 +115,6 @@ class ExtraRows {
   virtual bool impact(std::vector<solver::Body>& bodies, double restingSpeed, double h) = 0;
   virtual void warmStart(std::vector<solver::Body>& bodies) = 0;
   virtual void solve(std::vector<solver::Body>& bodies, double hSub, bool useBias) = 0;
-  virtual void endSubstep() = 0;
 };
 
 }  // namespace rigid

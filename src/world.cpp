@@ -541,7 +541,7 @@ StepResult commitStep(StepContext& s, CollisionCache& c, int steps, std::vector<
   const StepResult r = commit(s.model, s.data, next, s.h);
   if constexpr (modules::kJoints) {
     if (r.ok && c.joints) {  // the last solve's joint rows are the step's
-      commitJoints(*c.joints, s.data);
+      commitJoints(*c.joints, s.data, c.impulses);
       measureJoints(s.model, s.data);
     }
   }

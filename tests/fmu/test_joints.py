@@ -162,6 +162,19 @@ def test_a_hanging_chain_keeps_its_links_together_and_each_joint_carries_the_wei
         assert np.hypot(force[0], force[1]) < 1e-6 * weight_below, k
 
 
+def test_a_joints_load_is_its_own_reaction_not_the_bodys_contact_force(slave):
+    """A swinging box on a hinge, 1 m above a floor, touches nothing: its contact force
+    stays zero (to rounding) while the hinge carries it."""
+    swinging = hinged_box()
+    swinging["bodies"][0]["collision"] = True
+    swinging["surfaces"] = [{"name": "floor", "min": [-5, -5, -3], "max": [5, 5, -2]}]
+    s = slave(swinging, start={"leaf.angularVelocity[2]": 2.0})
+    t, y = run(s, ["leaf.contactForce[1]", "leaf.contactForce[3]", "leaf.contactTorque[2]",
+                   "hinge.reactionForce[3]"], 1.0, 0.01)
+    assert np.max(np.abs(y[:, :3])) < 1e-9 * 2.0 * G
+    assert np.min(y[1:, 3]) > 0.5 * 2.0 * G
+
+
 # ---- a motor, a limit and a spring ------------------------------------------------------
 
 def wheel(**motor):

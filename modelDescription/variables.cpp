@@ -200,7 +200,7 @@ void addJointVariables(const WorldModel& model, Add add) {
       scalar("damping", Quantity::JointDamping, Causality::Parameter, Variability::Tunable, u.damping,
              "the spring's damping, >= 0");
     }
-    if (j.limited || j.rope)
+    if (rigid::hasStops(j))
       scalar("restitution", Quantity::JointRestitution, Causality::Parameter, Variability::Tunable, "1",
              "coefficient of restitution of its stops (limits, a rope's length), in [0, 1]");
     if (j.limited) {

@@ -36,7 +36,7 @@ struct JointConstants {
   Vec3 axisB = Vec3::UnitZ();    // unit, body b's frame
   Quat rest = Quat::Identity();  // qA^-1 qB at the start: the angle's zero, a weld's hold
   double length = 0.0;           // m, a distance joint's length (a spring's rest length)
-  bool rope = false;             // a distance joint that only pulls
+  bool rope = false;             // a distance joint that only pulls (with a spring: an elastic one)
   // Limits of the coordinate (rad or m), and the restitution of a stop at them (or at
   // a rope's full length): the share of the approach speed the stop gives back.
   bool limited = false;
@@ -56,6 +56,9 @@ struct JointConstants {
   double motorSpeed = 0.0;      // rad/s or m/s
   double targetPosition = 0.0;  // rad or m
 };
+
+// Whether the coordinate has stops to strike: limits, or a rigid rope's full length.
+inline bool hasStops(const JointConstants& j) { return j.limited || (j.rope && !j.spring); }
 
 // The rows of a joint, each with its slot in JointMemory: the anchors meeting (3, or
 // the 2 across a slider's axis), the orientations (3, or the 2 that keep a hinge's

@@ -75,7 +75,7 @@ std::array<bool, kJointRows> rowsOf(const JointConstants& j) {
   on[kHold] = j.type == JointType::Distance && !j.spring && !j.rope;
   on[kSpring] = j.spring;
   on[kLower] = j.limited;
-  on[kUpper] = j.limited || j.rope;
+  on[kUpper] = hasStops(j);
   on[kMotor] = j.motor;
   return on;
 }
@@ -149,7 +149,7 @@ void build(Work& w, const Body& A, const Body& B) {
   for (Vec3* v : {&against.linear, &against.angularA, &against.angularB, &against.spinA, &against.spinB}) *v = -*v;
   w.row[kHold] = w.row[kSpring] = w.row[kLower] = w.row[kMotor] = along;
   w.row[kUpper] = against;
-  const double upper = j.rope ? (j.limited ? std::min(j.upper, j.length) : j.length) : j.upper;
+  const double upper = j.rope && !j.spring ? (j.limited ? std::min(j.upper, j.length) : j.length) : j.upper;
   w.error[kHold] = w.coordinate - j.length;
   w.error[kSpring] = w.coordinate - (j.type == JointType::Distance ? j.length : w.target);
   w.error[kLower] = w.coordinate - j.lower;
@@ -193,7 +193,8 @@ void solveLimit(Work& w, int k, Body& A, Body& B, const Softness& soft, double h
   w.lambda[k] = total;
 }
 
-// The coordinate's spring (physical: in every pass) and motor (bounded by its force).
+// The coordinate's spring (physical: in every pass; an elastic rope's only pulls, and
+// only while stretched) and motor (bounded by its force).
 void solveDrive(Work& w, Body& A, Body& B, double hSub) {
   const JointConstants& j = *w.joint;
   const double mass = 1.0 / coupling(A, B, w.row[kSpring], w.row[kSpring]);
@@ -201,8 +202,10 @@ void solveDrive(Work& w, Body& A, Body& B, double hSub) {
     const Softness s = makeSpring(j.stiffness, j.damping, mass, hSub);
     const double impulse = -s.massScale * mass * (velocityAlong(A, B, w.row[kSpring]) + s.biasRate * w.error[kSpring]) -
                            s.impulseScale * w.lambda[kSpring];
-    w.push(A, B, w.row[kSpring], impulse);
-    w.lambda[kSpring] += impulse;
+    double total = w.lambda[kSpring] + impulse;
+    if (j.rope) total = w.error[kSpring] > 0.0 ? std::min(total, 0.0) : 0.0;
+    w.push(A, B, w.row[kSpring], total - w.lambda[kSpring]);
+    w.lambda[kSpring] = total;
   }
   if (w.on[kMotor]) {
     const double most = j.maxMotorForce * hSub;

@@ -98,10 +98,11 @@ void readLimits(const Object& o, JointConstants& j) {
   j.upper = v[1];
 }
 
-// The stops' restitution: a joint with limits or a rope has stops.
+// The stops' restitution: limits and a rigid rope's full length are stops.
 void readRestitution(const Object& o, JointConstants& j) {
   if (!o.has("restitution")) return;
-  if (!j.limited && !j.rope) fail(o.path("restitution"), "only a joint with limits (or a rope) has stops to bounce at");
+  if (!hasStops(j))
+    fail(o.path("restitution"), "only a joint with limits (or a rope without a spring) has stops to bounce at");
   j.restitution = inRange(o, "restitution", 0.0, 0.0, 1.0);
 }
 
@@ -165,8 +166,8 @@ JointConstants readJoint(const json& json, const std::string& path, const std::v
     j.rope = o.boolean("rope", false);
   }
   readLimits(o, j);
-  readRestitution(o, j);
   readDrives(o, j);
+  readRestitution(o, j);
   j.collide = o.boolean("collide", false);
   return j;
 }

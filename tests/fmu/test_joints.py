@@ -339,3 +339,21 @@ def test_a_stop_gives_back_its_restitution_of_the_approach_speed(slave, restitut
     np.testing.assert_allclose(y[before, 1], 1.0, rtol=1e-12)
     np.testing.assert_allclose(y[after, 1], -restitution, atol=1e-9)
     assert np.max(y[:, 0]) < 0.3 + 1e-3
+
+
+def test_an_elastic_rope_pulls_only_while_stretched(slave):
+    """A 1 kg ball on a rope of 1 m and 100 N/m, dropped from 0.1 m below the anchor:
+    free fall while the rope is slack, then the stretch x that energy gives,
+    m g (0.9 + x) = k x^2 / 2; the rope never pushes."""
+    m, k = 1.0, 100.0
+    s = scene("Bungee", [sphere("ball", [0, 0, -0.1], mass=m)],
+              [{"name": "cord", "type": "distance", "bodies": ["world", "ball"], "anchors": [[0, 0, 0], [0, 0, 0]],
+                "length": 1.0, "rope": True, "spring": {"stiffness": k}}])
+    t, y = run(slave(s), ["ball.position[3]", "cord.reactionForce[3]"], 1.5, 0.001)
+    slack = t < math.sqrt(2 * 0.9 / G) - 0.002
+    fall = -0.1 - 0.5 * G * t[slack] ** 2
+    assert np.all(np.abs(y[slack, 0] - fall) <= 0.5 * G * t[slack] * 0.001 + 1e-12)  # the sub-steps' error
+    assert np.max(np.abs(y[slack, 1])) < 1e-12
+    stretch = (m * G + math.sqrt((m * G) ** 2 + 2 * k * m * G * 0.9)) / k
+    assert -np.min(y[:, 0]) - 1.0 == pytest.approx(stretch, rel=1e-2)
+    assert np.min(y[:, 1]) > -1e-9

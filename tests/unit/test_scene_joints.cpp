@@ -102,7 +102,7 @@ TEST(SceneJoints, OnlyAJointWithStopsHasARestitutionWithinZeroAndOne) {
                 .restitution,
             0.25);
   EXPECT_EQ(refusal(kHinge + R"("axis": [0, 1, 0], "restitution": 0.5})"),
-            "joints[0].restitution: only a joint with limits (or a rope) has stops to bounce at");
+            "joints[0].restitution: only a joint with limits (or a rope without a spring) has stops to bounce at");
   EXPECT_EQ(refusal(kHinge + R"("axis": [0, 1, 0], "limits": [-1, 1], "restitution": 1.5})"),
             "joints[0].restitution: must be in [0, 1], got 1.5");
 }

@@ -620,9 +620,12 @@ std::string parameterConflict(const WorldModel& model) {
     if (std::string why = check(b.name, b.staticFriction, b.kineticFriction); !why.empty()) return why;
   for (const rigid::Surface& s : model.surfaces)
     if (std::string why = check(s.name, s.staticFriction, s.kineticFriction); !why.empty()) return why;
-  for (const rigid::JointConstants& j : model.joints)
+  for (const rigid::JointConstants& j : model.joints) {
     if (j.limited && j.lower > j.upper)
       return j.name + ".lower: must be <= " + j.name + ".upper (" + fmt(j.upper) + "), got " + fmt(j.lower);
+    if (j.limited && j.type == rigid::JointType::Distance && j.lower < 0.0)
+      return j.name + ".lower: a length must be >= 0 m, got " + fmt(j.lower);
+  }
   return "";
 }
 

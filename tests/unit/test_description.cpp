@@ -406,8 +406,7 @@ TEST(Parameters, ABeltVelocityIsAnInputOfTheConveyorsOnly) {
 
 // Joints bring units of their own (rad, N.m/rad, N.s/m…): each Real's unit is defined in
 // the XML of both versions, for a hinge and a slider with every option.
-TEST(JointDescription, EveryJointUnitIsDefinedInTheXml) {
-  const rigid::Scene scene = rigid::parseScene(R"({
+const char* const kJointScene = R"({
     "name": "Joints",
     "bodies": [
       {"name": "a", "shape": {"type": "box", "size": [0.2, 0.2, 0.2]}, "mass": 1.0, "position": [0, 0, -1]},
@@ -417,9 +416,14 @@ TEST(JointDescription, EveryJointUnitIsDefinedInTheXml) {
       {"name": "hinge", "type": "revolute", "bodies": ["world", "a"], "anchor": [0, 0, 0], "axis": [0, 1, 0],
        "limits": [-1, 1], "motor": {"speed": 1, "maxTorque": 2}, "spring": {"stiffness": 3, "damping": 0.1}},
       {"name": "slider", "type": "prismatic", "bodies": ["a", "b"], "anchor": [1, 0, -1], "axis": [1, 0, 0],
-       "limits": [-0.5, 0.5], "motor": {"speed": 1, "maxForce": 2}, "spring": {"stiffness": 3, "damping": 0.1}}
+       "limits": [-0.5, 0.5], "motor": {"speed": 1, "maxForce": 2}, "spring": {"stiffness": 3, "damping": 0.1}},
+      {"name": "rod", "type": "distance", "bodies": ["world", "b"], "anchors": [[1, 0, 0], [0, 0, 0]],
+       "limits": [0.5, 1.5], "restitution": 0.5}
     ]
-  })");
+  })";
+
+TEST(JointDescription, EveryJointUnitIsDefinedInTheXml) {
+  const rigid::Scene scene = rigid::parseScene(kJointScene);
   const std::vector<Variable> vars = rigidfmu::modelVariables(scene);
   for (rigidfmu::FmiVersion version : {rigidfmu::FmiVersion::Fmi2, rigidfmu::FmiVersion::Fmi3}) {
     const std::string xml = rigidfmu::modelDescriptionXml(scene, version);
@@ -432,4 +436,28 @@ TEST(JointDescription, EveryJointUnitIsDefinedInTheXml) {
   for (const char* unit : {"rad", "N.m/rad", "N.m.s/rad", "N/m", "N.s/m"})
     EXPECT_NE(std::find_if(vars.begin(), vars.end(), [&](const Variable& v) { return v.unit == unit; }), vars.end())
         << unit;
+}
+
+// The joints' tunable parameters are checked when set, and the pairs when they take
+// effect, each message naming the variable and its limit.
+TEST(JointDescription, TunableParametersOutOfRangeAreRefusedNamingThem) {
+  const rigid::Scene scene = rigid::parseScene(kJointScene);
+  const std::vector<Variable> vars = rigidfmu::modelVariables(scene);
+  rigid::WorldModel model = scene.model;
+  rigid::WorldData data = rigid::initialData(model);
+  auto write = [&](const char* name, double value) {
+    return rigidfmu::writeValue(find(vars, name), value, model, data, Phase::Running);
+  };
+  EXPECT_EQ(write("hinge.maxMotorTorque", 0.0), "hinge.maxMotorTorque: must be > 0 N.m, got 0");
+  EXPECT_EQ(write("slider.stiffness", -1.0), "slider.stiffness: must be >= 0 N/m, got -1");
+  EXPECT_EQ(write("rod.restitution", 1.5), "rod.restitution: must be in [0, 1], got 1.5");
+  EXPECT_EQ(model.joints[2].restitution, 0.5);
+  EXPECT_EQ(write("rod.restitution", 1.0), "");
+  EXPECT_EQ(model.joints[2].restitution, 1.0);
+  EXPECT_EQ(rigidfmu::parameterConflict(model), "");
+  EXPECT_EQ(write("hinge.lower", 2.0), "");
+  EXPECT_EQ(rigidfmu::parameterConflict(model), "hinge.lower: must be <= hinge.upper (1), got 2");
+  EXPECT_EQ(write("hinge.lower", -1.0), "");
+  EXPECT_EQ(write("rod.lower", -0.25), "");
+  EXPECT_EQ(rigidfmu::parameterConflict(model), "rod.lower: a length must be >= 0 m, got -0.25");
 }

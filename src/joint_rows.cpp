@@ -37,12 +37,15 @@ struct Pose {
   Quat turn;    // relativeTurn
 };
 
-Pose poseOf(const JointConstants& j, const Vec3& xA, const Quat& qA, const Vec3& xB, const Quat& qB) {
+// `turning`: whether to find the relative turn too (a weld's and a slider's rows and a
+// hinge's angle need it).
+Pose poseOf(const JointConstants& j, const Vec3& xA, const Quat& qA, const Vec3& xB, const Quat& qB,
+            bool turning = true) {
   Pose p;
   p.rA = qA * j.anchorA;
   p.rB = qB * j.anchorB;
   p.d = (xB + p.rB) - (xA + p.rA);
-  p.turn = relativeTurn(j, qA, qB);
+  if (turning) p.turn = relativeTurn(j, qA, qB);
   if (j.type == JointType::Distance) {
     const double length = p.d.norm();
     p.axis = length > 1e-12 ? Vec3(p.d / length) : Vec3(qA * j.axisA);
@@ -90,6 +93,7 @@ struct Work {
   Jacobian row[kJointRows];
   Vec3 perpA[2], perpB[2];          // a slider's directions across a's axis, a hinge's across b's (body frames)
   double angle0 = 0.0, raw0 = 0.0;  // rad: a hinge's angle and raw angle at the step's start
+  bool measured = false;            // whether a row needs the coordinate (a stop, a spring, a rod)
   double coordinate = 0.0;          // now
   double motorSpeed = 0.0, target = 0.0;
   Vec3 rB = Vec3::Zero();
@@ -111,9 +115,11 @@ struct Work {
 // Every row of a joint for the bodies' poses now.
 void build(Work& w, const Body& A, const Body& B) {
   const JointConstants& j = *w.joint;
-  const Pose p = poseOf(j, A.x0 + A.moved, A.q, B.x0 + B.moved, B.q);
+  const bool held = j.type == JointType::Fixed || j.type == JointType::Prismatic;
+  const Pose p =
+      poseOf(j, A.x0 + A.moved, A.q, B.x0 + B.moved, B.q, held || (j.type == JointType::Revolute && w.measured));
   w.rB = p.rB;
-  w.coordinate = coordinateOf(j, p, w.angle0, w.raw0);
+  if (w.measured) w.coordinate = coordinateOf(j, p, w.angle0, w.raw0);
   if (j.type == JointType::Prismatic) {  // across the axis: levers of a to b's anchor
     for (int k = 0; k < 2; ++k) {
       const Vec3 n = A.q * w.perpA[k];
@@ -224,6 +230,7 @@ class JointRows final : public ExtraRows {
       Work& w = work_[k];
       w.joint = &j;
       w.on = rowsOf(j);
+      w.measured = w.on[kHold] || w.on[kSpring] || w.on[kLower] || w.on[kUpper];
       w.perpA[0] = anyPerpendicular(j.axisA);
       w.perpA[1] = j.axisA.cross(w.perpA[0]);
       w.perpB[0] = anyPerpendicular(j.axisB);

@@ -31,4 +31,4 @@ cd "$root"
 # in the plain suite; valgrind is left out too, it cannot run beside ASan.
 phase "sanitizer pytest" env LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.so)" \
   ASAN_OPTIONS="halt_on_error=1:detect_leaks=0" RIGIDFMU_SANITIZED=1 RIGIDFMU_SKIP_SETUP=1 \
-  RIGIDFMU_BUILD="$build" "$root/.venv/bin/python" -m pytest tests/fmu -q "$@"
+  RIGIDFMU_BUILD="$build" "$root/.venv/bin/python" -m pytest tests/fmu -q -n "$(nproc)" --dist loadfile "$@"

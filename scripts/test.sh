@@ -21,7 +21,7 @@ phase ctest bash -c 'cd "$1" && /usr/bin/ctest --output-on-failure -j"$(nproc)"'
 # machine, which prints its time)
 phase win64 "$root/scripts/build_win64.sh"
 cd "$root"
-phase pytest env RIGIDFMU_SKIP_SETUP=1 RIGIDFMU_BUILD="$build" "$root/.venv/bin/python" -m pytest tests -q "$@"
+phase pytest env RIGIDFMU_SKIP_SETUP=1 RIGIDFMU_BUILD="$build" "$root/.venv/bin/python" -m pytest tests -q -n "$(nproc)" --dist loadfile "$@"
 if [ -z "${RIGIDFMU_NO_SANITIZE:-}" ]; then
   RIGIDFMU_SKIP_SETUP=1 RIGIDFMU_SANITIZE_BUILD="$build-asan" "$root/scripts/sanitize.sh"
 fi

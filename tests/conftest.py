@@ -5,19 +5,39 @@ import os
 import pathlib
 import shutil
 import subprocess
+import sys
 
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 BUILD = pathlib.Path(os.environ.get("RIGIDFMU_BUILD", ROOT / "build"))
-FMU_DIR = BUILD / "test-fmus"
+# Under pytest-xdist (`pytest -n 2`, scripts/test.sh) each worker process builds into a
+# folder of its own: a worker never sees another's half-written FMU.
+WORKER = os.environ.get("PYTEST_XDIST_WORKER")
+FMU_DIR = BUILD / "test-fmus" / (WORKER or "session")
 # FMUs are shared between the tests of one session, never across sessions: the code
 # they were built from may have changed since.
 shutil.rmtree(FMU_DIR, ignore_errors=True)
 # The session's first FMU brings the build trees up to date (build_fmu.sh runs CMake on
 # the core's tree and the win64 one, over a second even when nothing changed); the
 # others package from them as they are (--no-build): a session does not change the code.
-built = []
+# Workers never build the trees (two CMake runs on one tree would race): the
+# controlling process has (pytest_sessionstart).
+built = [] if WORKER is None else [None]
+
+
+def bring_trees_up_to_date():
+    env = dict(os.environ, RIGIDFMU_SKIP_SETUP="1")
+    env.pop("LD_PRELOAD", None)  # not for the build tools (see build_fmu)
+    subprocess.run([sys.executable, "-c", "from rigidfmu import native; native.find(build=True, win64=True)"],
+                   check=True, env=env, stdout=subprocess.DEVNULL)
+
+
+def pytest_sessionstart(session):
+    """With workers (pytest -n N) the controlling process brings the build trees up to
+    date once, before any worker builds an FMU."""
+    if WORKER is None and session.config.getoption("numprocesses", default=None):
+        bring_trees_up_to_date()
 
 
 def build_fmu(scene: dict, fmi: int = 2) -> pathlib.Path:

@@ -260,6 +260,35 @@ def test_a_slider_spring_oscillates_at_its_natural_period(slave):
     assert peaks[-1] > 0.19
 
 
+def test_a_spring_on_a_hinge_is_a_position_servo_on_its_target_input(slave):
+    """A torsion spring of 50 N m/rad and 5 N m s/rad on the wheel's axle, its target
+    set to 1 rad between steps: the wheel turns there and holds it, the axle's torque
+    back to zero."""
+    s = slave(scene("Servo", wheel(speed=0.0, maxTorque=1.0)["bodies"],
+                    [{"name": "axle", "type": "revolute", "bodies": ["world", "wheel"], "anchor": [0, 0, 0],
+                      "axis": [0, 0, 1], "spring": {"stiffness": 50.0, "damping": 5.0}}]))
+    s.set_values({"axle.targetPosition": 1.0})
+    t, y = run(s, ["axle.position", "axle.reactionTorque[3]"], 3.0, 0.01)
+    assert np.max(y[:, 0]) < 1.0 + 1e-3  # over-damped (zeta 1.77): no overshoot
+    assert y[-1, 0] == pytest.approx(1.0, abs=1e-6)
+    assert abs(y[-1, 1]) < 1e-6
+
+
+def test_a_weld_holds_a_cantilever_and_reads_its_moment(slave):
+    """A beam of 1 m and 2 kg welded to the world at one end: it stays, and the weld
+    carries its weight m g and the moment m g L/2 about its anchor."""
+    m, length = 2.0, 1.0
+    s = slave(scene("Cantilever", [box("beam", [length, 0.1, 0.1], [length / 2, 0, 0], mass=m)],
+                    [{"name": "weld", "type": "fixed", "bodies": ["world", "beam"], "anchor": [0, 0, 0]}]))
+    t, y = run(s, ["beam.position[1]", "beam.position[3]", "weld.reactionForce[3]", "weld.reactionTorque[2]"],
+               2.0, 0.01)
+    assert np.max(np.abs(y[:, 0] - length / 2)) < 1e-3
+    assert np.max(np.abs(y[:, 1])) < 1e-3
+    assert y[-1, 2] == pytest.approx(m * G, rel=1e-6)
+    # gravity's moment about the anchor is (L/2) x (-m g z) = +m g L/2 about y; the weld's undoes it
+    assert y[-1, 3] == pytest.approx(-m * G * length / 2, rel=1e-6)
+
+
 # ---- collision between jointed bodies: off by default, on by a flag -------------------
 
 def roped_pair(**flag):

@@ -98,6 +98,7 @@ def test_the_performance_report_renders_every_saved_figure(saved):
 def without_mujoco(r):
     r.update(peers=None, interleaved=None, windows_interleaved=None)
     r["accuracy"].update(mujoco=[], equal_accuracy=[])
+    r["chain"].update(mujoco=None, ratio=None, ratio_rk4=None, rounds=[])
 
 
 def quick(r):
@@ -129,7 +130,7 @@ def test_every_part_of_the_performance_template_is_written_by_some_run(saved, mo
         texts[name] = performance.render(r)
         assert not re.search(r"\{\w+\}|<!-- part", texts[name]), name
     assert written == set(parts((template.FOLDER / "performance.md").read_text(encoding="utf-8")))
-    assert texts["without MuJoCo"].count("MuJoCo was not measured in this run") == 2
+    assert texts["without MuJoCo"].count("MuJoCo was not measured in this run") == 3
     assert "| 1000 | not measured | not measured |" in texts["without MuJoCo"]
     assert "**Equal height**" not in texts["quick"] and "the full run times the pile of 1000 so" in texts["quick"]
     assert "A step failed in the piles of [100]: their times" in texts["a step failed"]

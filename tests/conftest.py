@@ -65,6 +65,23 @@ def fmu_of():
     return build_fmu
 
 
+@pytest.fixture
+def slave(fmu_of):
+    """Opens initialised instances of scenes' FMUs (FMI version `fmi`, the start values
+    `start` set before initialisation), closed after the test."""
+    from rigidfmu.driver import Slave
+    opened = []
+
+    def open_(scene, fmi=2, start=None):
+        s = Slave(fmu_of(scene, fmi=fmi))
+        opened.append(s)
+        s.initialize(start)
+        return s
+    yield open_
+    for s in opened:
+        s.close()
+
+
 # Under the sanitizers (scripts/sanitize.sh) a physics sweep runs its first case only.
 # `@pytest.mark.sweep("name", ...)` names the parameters of a parametrized test that only
 # change numbers (a step, a mass ratio, an angle), not the code a case runs; a parameter

@@ -9,8 +9,6 @@ import math
 import numpy as np
 import pytest
 
-from harness import Slave
-
 G = 9.81
 H = 0.01  # s, the communication step
 M = 2.0   # kg, the free box
@@ -48,20 +46,6 @@ def drive(s, name, t, position, velocity, acceleration=None):
         s.slave.setRealInputDerivatives(s.vr([f"{name}.velocity[{i + 1}]" for i in range(3)]), [1, 1, 1],
                                         list(acceleration))
     s.step(H, t)
-
-
-@pytest.fixture
-def slave(fmu_of):
-    opened = []
-
-    def open_(scene, fmi=2):
-        s = Slave(fmu_of(scene, fmi=fmi))
-        opened.append(s)
-        s.initialize()
-        return s
-    yield open_
-    for s in opened:
-        s.close()
 
 
 def test_a_platform_accelerating_upward_lifts_a_box_with_m_g_plus_a(slave):

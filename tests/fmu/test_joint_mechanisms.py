@@ -12,24 +12,7 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.special import ellipk
 
-from harness import Slave
-
 G = 9.81
-
-
-@pytest.fixture
-def slave(fmu_of):
-    """Opens an initialised instance of a scene's FMU; closed after the test."""
-    opened = []
-
-    def open_(scene):
-        s = Slave(fmu_of(scene))
-        opened.append(s)
-        s.initialize()
-        return s
-    yield open_
-    for s in opened:
-        s.close()
 
 
 def trace(s, names, stop, h):

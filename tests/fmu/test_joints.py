@@ -12,8 +12,6 @@ import numpy as np
 import pytest
 from scipy.special import ellipk
 
-from harness import Slave
-
 G = 9.81
 
 
@@ -29,20 +27,6 @@ def box(name, size, position, mass=1.0, **fields):
 
 def scene(name, bodies, joints, step=1e-3, **extra):
     return {"name": name, "solver": {"method": "rk4", "step": step}, "bodies": bodies, "joints": joints, **extra}
-
-
-@pytest.fixture
-def slave(fmu_of):
-    opened = []
-
-    def open_(scene_, fmi=2, start=None):
-        s = Slave(fmu_of(scene_, fmi=fmi))
-        opened.append(s)
-        s.initialize(start)
-        return s
-    yield open_
-    for s in opened:
-        s.close()
 
 
 def run(s, names, duration, h):

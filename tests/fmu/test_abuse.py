@@ -34,7 +34,7 @@ from rigidfmu.driver import STATUS, Recorder, Slave, load_library
 TESTS = pathlib.Path(__file__).resolve().parent
 ROOT = TESTS.parents[1]
 SCENE_DIR = ROOT / "scripts" / "scenes"
-EXAMPLES = ["default.json", "spinner.json", "tumble.json", "thruster.json", "pusher.json"]
+EXAMPLES = ["default.json", "spinner.json", "tumble.json", "thruster.json", "pusher.json", "crane.json"]
 # Set by scripts/sanitize.sh: the FMUs are the ASan/UBSan build and the runtimes are
 # preloaded (LD_PRELOAD) into this process and its children.
 SANITIZED = os.environ.get("RIGIDFMU_SANITIZED") == "1"
@@ -650,6 +650,8 @@ def run_child(code, tmp_path, timeout):
     # sub-stepped: three seeds under the sanitizers, which run it several times slower
     ("pusher.json", FUZZ_SEEDS[:3] if SANITIZED else FUZZ_SEEDS, FUZZ_CALLS),
     ("default-belts.json", FUZZ_SEEDS, FUZZ_CALLS),
+    # joints: a motor on a rail, an elastic cable, a hinge with a spring and limits
+    ("crane.json", FUZZ_SEEDS[:3] if SANITIZED else FUZZ_SEEDS, FUZZ_CALLS),
     # once aborted the process inside FCL (see FCL_GJK_ABORT); fixed: states beyond 1e12 m
     # or non-finite are refused before collision detection sees them
     pytest.param("default.json", [105], 800, id="default.json-seed105"),

@@ -370,3 +370,19 @@ def test_an_elastic_rope_pulls_only_while_stretched(slave):
     stretch = (m * G + math.sqrt((m * G) ** 2 + 2 * k * m * G * 0.9)) / k
     assert -np.min(y[:, 0]) - 1.0 == pytest.approx(stretch, rel=1e-2)
     assert np.min(y[:, 1]) > -1e-9
+
+
+@pytest.mark.sweep("ratio")
+@pytest.mark.parametrize("ratio,stretch", [(100, 1e-3), (1000, 1e-2)])
+def test_a_light_link_holds_a_load_a_thousand_times_heavier(slave, ratio, stretch):
+    """A double pendulum of a 1 kg link and a load `ratio` times heavier, swinging for
+    10 s: the soft rows stay stable, and the rods give by less than `stretch` (the
+    softer the heavier the load they hold, as a soft contact under a heavy body)."""
+    centres = [[0, 0, 0], [0, 0, 0]]
+    s = slave(scene("HeavyLoad", [sphere("link", [0, 0, -0.5]), sphere("load", [0.3, 0, -1.0], mass=float(ratio))],
+                    [{"name": "rod1", "type": "distance", "bodies": ["world", "link"], "anchors": centres},
+                     {"name": "rod2", "type": "distance", "bodies": ["link", "load"], "anchors": centres}]))
+    t, y = run(s, ["rod1.position", "rod2.position", "load.velocity[1]"], 10.0, 0.005)
+    assert np.all(np.isfinite(y))
+    assert np.max(np.abs(y[:, 0] - 0.5)) < stretch
+    assert np.max(np.abs(y[:, 1] - math.hypot(0.3, 0.5))) < stretch

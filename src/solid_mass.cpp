@@ -1,5 +1,9 @@
 #include "solid_mass.h"
 
+#include <algorithm>
+#include <map>
+#include <utility>
+
 namespace rigid {
 
 namespace {
@@ -58,6 +62,53 @@ SolidMass meshSolidMass(const std::vector<Vec3>& vertices, const std::vector<std
   s.inertia(1, 2) = s.inertia(2, 1) = -(mixed.y() - v * c.y() * c.z());
   s.inertia(2, 0) = s.inertia(0, 2) = -(mixed.z() - v * c.z() * c.x());
   return s;
+}
+
+namespace {
+
+std::string triangleName(size_t k) { return "triangle " + std::to_string(k); }
+
+// The first fault of a triangle on its own, or "".
+std::string triangleFault(const std::vector<Vec3>& vertices, const std::array<int, 3>& t, size_t k) {
+  const int n = static_cast<int>(vertices.size());
+  for (int i : t)
+    if (i < 0 || i >= n) return triangleName(k) + " names vertex " + std::to_string(i) + " of " + std::to_string(n);
+  if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return triangleName(k) + " names a vertex twice";
+  const Vec3 n2 = (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]);
+  const double scale = std::max(
+      {(vertices[t[1]] - vertices[t[0]]).squaredNorm(), (vertices[t[2]] - vertices[t[0]]).squaredNorm(), 1e-300});
+  if (!(n2.norm() > 1e-12 * scale)) return triangleName(k) + " has no area (its vertices are on one line)";
+  return "";
+}
+
+}  // namespace
+
+std::string meshFault(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
+  for (size_t i = 0; i < vertices.size(); ++i)
+    if (!vertices[i].allFinite()) return "vertex " + std::to_string(i) + " is not finite";
+  if (triangles.size() < 4) return "a closed mesh has at least 4 triangles, got " + std::to_string(triangles.size());
+  // Each directed edge once; its reverse once, from the triangle on the other side.
+  std::map<std::pair<int, int>, size_t> directed;
+  for (size_t k = 0; k < triangles.size(); ++k) {
+    const std::array<int, 3>& t = triangles[k];
+    if (std::string why = triangleFault(vertices, t, k); !why.empty()) return why;
+    for (int e = 0; e < 3; ++e) {
+      const std::pair<int, int> edge{t[e], t[(e + 1) % 3]};
+      if (!directed.emplace(edge, k).second)
+        return "the edge from vertex " + std::to_string(edge.first) + " to " + std::to_string(edge.second) + " of " +
+               triangleName(k) + " runs the same way in " + triangleName(directed[edge]) +
+               " (the triangles are not wound alike, or more than two share it)";
+    }
+  }
+  for (const auto& [edge, k] : directed)
+    if (!directed.count({edge.second, edge.first}))
+      return "the edge from vertex " + std::to_string(edge.first) + " to " + std::to_string(edge.second) + " of " +
+             triangleName(k) + " borders no other triangle: the mesh is open";
+  const double volume = meshSolidMass(vertices, triangles).volume;
+  if (!(volume > 0.0))
+    return volume < 0.0 ? "the mesh is inside out (its triangles wound clockwise seen from outside)"
+                        : "the mesh bounds no volume";
+  return "";
 }
 
 PartMass placePart(const SolidMass& solid, double density, const Vec3& position, const Quat& orientation) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include "math_types.h"
@@ -23,6 +24,13 @@ struct SolidMass {
 // negative volume. The integrals are taken about the vertices' mean, so that a part far
 // from the file's origin loses no digits to cancellation.
 SolidMass meshSolidMass(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles);
+
+// Why the triangles do not bound a solid that meshSolidMass can measure, or "": a vertex
+// not finite, a triangle naming no vertex or one vertex twice, a triangle of no area, an
+// edge that fewer or more than two triangles share or that two share in the same
+// direction (an open or inconsistently wound mesh), no volume or a negative one (the
+// triangles wound clockwise seen from outside). The reason names the triangle or edge.
+std::string meshFault(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles);
 
 // A part of a compound body, or the compound: mass, centre of mass and inertia tensor
 // about that centre, all in the compound's frame.

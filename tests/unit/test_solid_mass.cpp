@@ -248,3 +248,37 @@ TEST(SolidMass, APlacedPartsInertiaTurnsWithIt) {
   EXPECT_NEAR(turned.inertia(1, 1), 2.0 * bar.inertia(0, 0), 1e-15);
   EXPECT_NEAR((turned.centre - Vec3(1, 2, 3)).norm(), 0.0, 1e-15);
 }
+
+// What a file's mesh must be before it is measured: each fault named with its place.
+TEST(SolidMass, AMeshThatBoundsNoSolidIsRefusedWithItsFault) {
+  const Mesh box = boxMesh(Vec3(1, 1, 1), Vec3::Zero());
+  EXPECT_EQ(rigid::meshFault(box.vertices, box.triangles), "");
+  Mesh open = box;  // the last triangle {1, 7, 5} gone: its neighbours' edges 1->5, 5->7, 7->1 unmatched
+  open.triangles.pop_back();
+  EXPECT_EQ(rigid::meshFault(open.vertices, open.triangles),
+            "the edge from vertex 1 to 5 of triangle 4 borders no other triangle: the mesh is open");
+  Mesh flipped = box;  // {4, 7, 6} wound {4, 6, 7}: its edge 7->4 is also triangle 2's {4, 5, 7}
+  std::swap(flipped.triangles[3][1], flipped.triangles[3][2]);
+  EXPECT_EQ(rigid::meshFault(flipped.vertices, flipped.triangles),
+            "the edge from vertex 7 to 4 of triangle 3 runs the same way in triangle 2 (the triangles are not wound "
+            "alike, or more than two share it)");
+  Mesh insideOut = box;
+  for (auto& t : insideOut.triangles) std::swap(t[1], t[2]);
+  EXPECT_EQ(rigid::meshFault(insideOut.vertices, insideOut.triangles),
+            "the mesh is inside out (its triangles wound clockwise seen from outside)");
+  Mesh flat = box;
+  flat.vertices.push_back(0.5 * (box.vertices[0] + box.vertices[1]));
+  flat.triangles[0] = {0, 8, 1};
+  EXPECT_EQ(rigid::meshFault(flat.vertices, flat.triangles), "triangle 0 has no area (its vertices are on one line)");
+  Mesh beyond = box;
+  beyond.triangles[5] = {0, 1, 8};
+  EXPECT_EQ(rigid::meshFault(beyond.vertices, beyond.triangles), "triangle 5 names vertex 8 of 8");
+  Mesh twice = box;
+  twice.triangles[2] = {0, 0, 1};
+  EXPECT_EQ(rigid::meshFault(twice.vertices, twice.triangles), "triangle 2 names a vertex twice");
+  Mesh nan = box;
+  nan.vertices[6].y() = std::nan("");
+  EXPECT_EQ(rigid::meshFault(nan.vertices, nan.triangles), "vertex 6 is not finite");
+  EXPECT_EQ(rigid::meshFault(box.vertices, Triangles(box.triangles.begin(), box.triangles.begin() + 3)),
+            "a closed mesh has at least 4 triangles, got 3");
+}

@@ -386,3 +386,21 @@ def test_a_light_link_holds_a_load_a_thousand_times_heavier(slave, ratio, stretc
     assert np.all(np.isfinite(y))
     assert np.max(np.abs(y[:, 0] - 0.5)) < stretch
     assert np.max(np.abs(y[:, 1] - math.hypot(0.3, 0.5))) < stretch
+
+
+def test_an_inelastic_strike_on_a_hinged_rod_gives_the_articulated_closed_form(slave):
+    """A 1 kg ball at 1 m/s strikes a 1 kg rod of 1 m, hinged at one end, 0.8 m from
+    the hinge, without bounce (no gravity, no friction): the ball and the rod's point
+    there leave together at m v / (m + I_h / r^2), the rod's inertia about the hinge
+    seen at the strike (the impact's impulse and the hinge's rows, solved together)."""
+    free = {"restitution": 0.0, "staticFriction": 0.0, "kineticFriction": 0.0, "collision": True}
+    rod = {**box("rod", [1.0, 0.05, 0.05], [0.5, 0, 0]), **free}
+    ball = {**sphere("ball", [0.8, 0.2, 0], velocity=[0, -1, 0]), **free}
+    s = slave(scene("StruckRod", [rod, ball], [{"name": "hinge", "type": "revolute", "bodies": ["world", "rod"],
+                                                "anchor": [0, 0, 0], "axis": [0, 0, 1]}], gravity=[0, 0, 0]))
+    run(s, [], 0.4, 0.01)
+    r, m = 0.8, 1.0
+    inertia = m * (1.0 + 0.05 ** 2) / 12 + m * 0.5 ** 2
+    v = m * 1.0 / (m + inertia / r ** 2)
+    assert -s.get("ball.velocity[2]") == pytest.approx(v, rel=2e-3)
+    assert -s.get("hinge.speed") * r == pytest.approx(v, rel=2e-3)

@@ -5,19 +5,10 @@
 
 namespace rigid {
 
-void setMass(BodyConstants& body, double mass) {
-  body.mass = mass;
-  if (body.inertiaFromShape) {
-    const Vec3 I = solidPrincipalInertia(body.shape, mass);
-    body.Ibody = I.asDiagonal();
-    body.IbodyInv = I.cwiseInverse().asDiagonal();
-    body.principalMoments = I;
-    body.principalFrame = Quat::Identity();
-  }
-}
+namespace {
 
-void setInertia(BodyConstants& body, const Mat3& Ibody) {
-  body.inertiaFromShape = false;
+// Ibody and what is derived from it once: its inverse, principal moments and axes.
+void storeInertia(BodyConstants& body, const Mat3& Ibody) {
   body.Ibody = Ibody;
   // Symmetric positive definite: invert through the eigen-decomposition, which stays
   // accurate for the strongly anisotropic (needle-like) tensors that a scene may give.
@@ -27,6 +18,27 @@ void setInertia(BodyConstants& body, const Mat3& Ibody) {
   if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);  // a rotation, not a reflection
   body.principalMoments = eig.eigenvalues();
   body.principalFrame = Quat(axes).normalized();
+}
+
+}  // namespace
+
+void setMass(BodyConstants& body, double mass) {
+  body.mass = mass;
+  if (!body.inertiaFromShape) return;
+  if (body.shape.type == ShapeType::Mesh) {  // the file's axes need not be principal
+    storeInertia(body, solidInertia(body.shape, mass));
+    return;
+  }
+  const Vec3 I = solidPrincipalInertia(body.shape, mass);
+  body.Ibody = I.asDiagonal();
+  body.IbodyInv = I.cwiseInverse().asDiagonal();
+  body.principalMoments = I;
+  body.principalFrame = Quat::Identity();
+}
+
+void setInertia(BodyConstants& body, const Mat3& Ibody) {
+  body.inertiaFromShape = false;
+  storeInertia(body, Ibody);
 }
 
 void makeDriven(BodyConstants& body) {

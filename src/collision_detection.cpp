@@ -4,6 +4,7 @@
 
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
@@ -36,8 +37,10 @@ constexpr double kFaceAlign = 0.98;
 constexpr double kSideAlign = 0.2;
 // Largest number of points of one pair's patch (the response wants few, well spread).
 constexpr int kMaxPatch = 4;
-// Vertices of an incident polygon: an octagon for a cylinder's end, plus one per clip.
-constexpr int kMaxPoly = 16;
+// Vertices of an incident polygon (an octagon for a cylinder's end, a hull's face of at
+// most kMaxFaceEdges), plus one per clip by a reference face's side.
+constexpr int kMaxFaceEdges = 32;
+constexpr int kMaxPoly = 2 * kMaxFaceEdges;
 constexpr int kDiscVertices = 8;  // the octagon drawn on a cylinder's end disc
 // m: how far libccd's EPA depth may exceed a face axis's overlap before its answer is
 // taken for a wrong one (its own tolerance is 1e-6).
@@ -48,11 +51,12 @@ constexpr double kPi = 3.14159265358979323846;
 // R (shape frame -> world), refreshed by detect().
 struct Geo {
   ShapeType type = ShapeType::Box;
-  Vec3 half = Vec3::Zero();   // m, box half extents (shape frame)
-  double radius = 0.0;        // m, sphere, cylinder, capsule
-  double halfLength = 0.0;    // m, cylinder, capsule: half the length along shape z
-  Mat3 R = Mat3::Identity();  // shape frame -> world
-  Vec3 p = Vec3::Zero();      // m, centre, world frame
+  const ConvexHull* hull = nullptr;  // mesh: its hull, body frame
+  Vec3 half = Vec3::Zero();          // m, box half extents (shape frame)
+  double radius = 0.0;               // m, sphere, cylinder, capsule
+  double halfLength = 0.0;           // m, cylinder, capsule: half the length along shape z
+  Mat3 R = Mat3::Identity();         // shape frame -> world
+  Vec3 p = Vec3::Zero();             // m, centre, world frame
 };
 
 // Support function: max over the shape of d.x, for x relative to the centre.
@@ -65,6 +69,12 @@ double supportExtent(const Geo& g, const Vec3& d) {
       return g.halfLength * std::abs(du) + g.radius * std::sqrt(std::max(0.0, d.squaredNorm() - du * du));
     }
     case ShapeType::Capsule: return g.halfLength * std::abs(g.R.col(2).dot(d)) + g.radius * d.norm();
+    case ShapeType::Mesh: {
+      const Vec3 local = g.R.transpose() * d;
+      double most = -std::numeric_limits<double>::infinity();
+      for (const Vec3& v : g.hull->vertices) most = std::max(most, v.dot(local));
+      return most;
+    }
   }
   return 0.0;
 }
@@ -83,6 +93,11 @@ inline Vec3 aabbHalfExtent(const Geo& g, const Mat3& R) {
       return e;
     }
     case ShapeType::Capsule: return g.halfLength * R.col(2).cwiseAbs() + Vec3::Constant(g.radius);
+    case ShapeType::Mesh: {  // about the centre of mass, which the hull need not be symmetric about
+      Vec3 e = Vec3::Zero();
+      for (const Vec3& v : g.hull->vertices) e = e.cwiseMax((R * v).cwiseAbs());
+      return e;
+    }
   }
   return Vec3::Zero();
 }
@@ -107,6 +122,13 @@ Vec3 supportPoint(const Geo& g, const Vec3& d) {
       if (g.type == ShapeType::Capsule) return end + g.radius * dn;
       const Vec3 across = dn - du * u;
       return across.norm() > 1e-12 ? Vec3(end + g.radius * across.normalized()) : end;
+    }
+    case ShapeType::Mesh: {
+      const Vec3 local = g.R.transpose() * d;
+      const Vec3* best = &g.hull->vertices.front();
+      for (const Vec3& v : g.hull->vertices)
+        if (v.dot(local) > best->dot(local)) best = &v;
+      return g.p + g.R * *best;
     }
   }
   return g.p;
@@ -179,32 +201,45 @@ int reducePatch(const Vec3* pts, const double* sep, int n, const Vec3& m, int* k
   return k;
 }
 
-// The reference face of a face contact: face k of the box `ref`, its outward normal m
-// turned toward the incident shape `inc`; axes k1 and k2 of ref span the face.
+// The reference face of a face contact: face k of the box `ref` (its axes k1 and k2
+// span the face), or face `hullFace` of a mesh's hull; its outward normal m points
+// toward the incident shape `inc`.
 struct ReferenceFace {
   const Geo* ref = nullptr;
   const Geo* inc = nullptr;
   bool refIsB = false;  // the face is B's: the patch's normal (a -> b) is then -m
   int k = 0, k1 = 1, k2 = 2;
+  int hullFace = -1;
   Vec3 m = Vec3::Zero();           // outward unit normal, world frame
-  Vec3 faceCentre = Vec3::Zero();  // m, world frame
+  Vec3 faceCentre = Vec3::Zero();  // m, world frame: a box face's centre, a point of a hull's face
 };
 
-// The box face of A or B most nearly along the contact normal n (a -> b), when it is
-// within kFaceAlign of it; none for an edge or corner contact (or no box at all).
-std::optional<ReferenceFace> referenceFace(const Geo& A, const Geo& B, const Vec3& n) {
-  double alignA = -1.0, alignB = -1.0;
-  int kA = -1, kB = -1;
-  for (int k = 0; k < 3; ++k) {
-    if (B.type == ShapeType::Box && std::abs(B.R.col(k).dot(n)) > alignB) {
-      alignB = std::abs(B.R.col(k).dot(n));
-      kB = k;
-    }
-    if (A.type == ShapeType::Box && std::abs(A.R.col(k).dot(n)) > alignA) {
-      alignA = std::abs(A.R.col(k).dot(n));
-      kA = k;
-    }
+// The face of g whose outward normal is nearest to the direction `dir`: the cosine
+// between them, and its index in `face` (a box's axis, whose sign the caller takes
+// from dir; a hull's face of at most kMaxFaceEdges edges); -1 for other shapes.
+double facingFace(const Geo& g, const Vec3& dir, int& face) {
+  face = -1;
+  double align = -1.0;
+  if (g.type == ShapeType::Box) {
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(g.R.col(k).dot(dir)) > align) align = std::abs(g.R.col(k).dot(dir)), face = k;
+  } else if (g.type == ShapeType::Mesh) {
+    const Vec3 local = g.R.transpose() * dir;
+    const ConvexHull& h = *g.hull;
+    for (int f = 0; f < h.faceCount(); ++f)
+      if (h.faceSize(f) <= kMaxFaceEdges && h.faceNormal[f].dot(local) > align)
+        align = h.faceNormal[f].dot(local), face = f;
   }
+  return align;
+}
+
+// The face of A or B (a box's or a hull's) most nearly along the contact normal n
+// (a -> b), when it is within kFaceAlign of it; none for an edge or corner contact
+// (or no face at all).
+std::optional<ReferenceFace> referenceFace(const Geo& A, const Geo& B, const Vec3& n) {
+  int kA = -1, kB = -1;
+  const double alignA = facingFace(A, n, kA);
+  const double alignB = facingFace(B, -n, kB);
   // B (the surface, when there is one) is the reference on a tie.
   const bool refIsB = kB >= 0 && alignB >= alignA - 1e-12;
   const double align = refIsB ? alignB : alignA;
@@ -213,7 +248,14 @@ std::optional<ReferenceFace> referenceFace(const Geo& A, const Geo& B, const Vec
   f.refIsB = refIsB;
   f.ref = refIsB ? &B : &A;
   f.inc = refIsB ? &A : &B;
-  f.k = refIsB ? kB : kA;
+  const int face = refIsB ? kB : kA;
+  if (f.ref->type == ShapeType::Mesh) {
+    f.hullFace = face;
+    f.m = f.ref->R * f.ref->hull->faceNormal[face];
+    f.faceCentre = f.ref->p + f.ref->R * f.ref->hull->faceVertexAt(face, 0);
+    return f;
+  }
+  f.k = face;
   f.k1 = (f.k + 1) % 3;
   f.k2 = (f.k + 2) % 3;
   const Vec3 toward = refIsB ? Vec3(-n) : n;  // from the reference shape to the incident one
@@ -273,6 +315,20 @@ int incidentRoundFeature(const Geo& inc, const Vec3& m, Vec3* pts) {
   return 1;
 }
 
+// The face of the hull of `inc` whose normal is most nearly -m, its vertices in pts (a
+// face of more than kMaxFaceEdges: that many of them, evenly spread, a polygon inside it).
+int incidentHullFace(const Geo& inc, const Vec3& m, Vec3* pts) {
+  const Vec3 local = inc.R.transpose() * m;
+  const ConvexHull& h = *inc.hull;
+  int best = 0;
+  for (int f = 1; f < h.faceCount(); ++f)
+    if (h.faceNormal[f].dot(local) < h.faceNormal[best].dot(local)) best = f;
+  const int n = h.faceSize(best);
+  const int count = std::min(n, kMaxFaceEdges);
+  for (int i = 0; i < count; ++i) pts[i] = inc.p + inc.R * h.faceVertexAt(best, i * n / count);
+  return count;
+}
+
 // The incident feature of the other shape, facing the reference face of normal m: a
 // polygon (>= 3 vertices), a segment (2) or a point (1), written to pts (kMaxPoly).
 int incidentFeature(const Geo& inc, const Vec3& m, Vec3* pts) {
@@ -283,28 +339,52 @@ int incidentFeature(const Geo& inc, const Vec3& m, Vec3* pts) {
     case ShapeType::Box: return incidentBoxFace(inc, m, pts);
     case ShapeType::Cylinder:
     case ShapeType::Capsule: return incidentRoundFeature(inc, m, pts);
+    case ShapeType::Mesh: return incidentHullFace(inc, m, pts);
   }
   return 0;
 }
 
-// Clips the np points of the incident feature in pts to the reference face's rectangle
-// (its four side planes), using spare as the second buffer of the polygon clipping;
-// pts is left pointing at the buffer that holds the result. Returns the points left:
-// none when a point or a segment misses the face, which makes it an edge contact.
-int clipToFace(const ReferenceFace& f, int np, Vec3*& pts, Vec3* spare) {
+// The sides of a reference face as planes t.(x - o) <= e in the face's plane, t outward:
+// a box face's four, a hull face's edges (counter-clockwise seen along m, so that
+// edge x m points out). Returns how many.
+int faceSides(const ReferenceFace& f, Vec3* t, double* e, Vec3* o) {
   const Geo& ref = *f.ref;
-  const Vec3 sideAxis[4] = {ref.R.col(f.k1), -ref.R.col(f.k1), ref.R.col(f.k2), -ref.R.col(f.k2)};
-  const double sideHalf[4] = {ref.half[f.k1], ref.half[f.k1], ref.half[f.k2], ref.half[f.k2]};
+  if (f.hullFace < 0) {
+    const Vec3 axes[4] = {ref.R.col(f.k1), -ref.R.col(f.k1), ref.R.col(f.k2), -ref.R.col(f.k2)};
+    const double halves[4] = {ref.half[f.k1], ref.half[f.k1], ref.half[f.k2], ref.half[f.k2]};
+    for (int s = 0; s < 4; ++s) t[s] = axes[s], e[s] = halves[s], o[s] = f.faceCentre;
+    return 4;
+  }
+  const ConvexHull& h = *ref.hull;
+  const int n = h.faceSize(f.hullFace);
+  for (int s = 0; s < n; ++s) {
+    const Vec3 a = ref.p + ref.R * h.faceVertexAt(f.hullFace, s);
+    const Vec3 b = ref.p + ref.R * h.faceVertexAt(f.hullFace, (s + 1) % n);
+    t[s] = (b - a).cross(f.m).normalized();
+    e[s] = 0.0;
+    o[s] = a;
+  }
+  return n;
+}
+
+// Clips the np points of the incident feature in pts to the reference face (its side
+// planes), using spare as the second buffer of the polygon clipping; pts is left
+// pointing at the buffer that holds the result. Returns the points left: none when a
+// point or a segment misses the face, which makes it an edge contact.
+int clipToFace(const ReferenceFace& f, int np, Vec3*& pts, Vec3* spare) {
+  Vec3 sideAxis[kMaxFaceEdges], sideOrigin[kMaxFaceEdges];
+  double sideOffset[kMaxFaceEdges];
+  const int sides = faceSides(f, sideAxis, sideOffset, sideOrigin);
   if (np == 1) {
-    for (int s = 0; s < 4; ++s)
-      if (sideAxis[s].dot(pts[0] - f.faceCentre) > sideHalf[s]) return 0;
+    for (int s = 0; s < sides; ++s)
+      if (sideAxis[s].dot(pts[0] - sideOrigin[s]) > sideOffset[s]) return 0;
   } else if (np == 2) {
-    for (int s = 0; s < 4; ++s)
-      if (!clipSegment(pts, sideAxis[s], sideHalf[s], f.faceCentre)) return 0;
+    for (int s = 0; s < sides; ++s)
+      if (!clipSegment(pts, sideAxis[s], sideOffset[s], sideOrigin[s])) return 0;
   } else {
     Vec3* other = spare;
-    for (int s = 0; s < 4 && np > 0; ++s) {
-      np = clipPolygon(pts, np, sideAxis[s], sideHalf[s], f.faceCentre, other);
+    for (int s = 0; s < sides && np > 0; ++s) {
+      np = clipPolygon(pts, np, sideAxis[s], sideOffset[s], sideOrigin[s], other);
       std::swap(pts, other);
     }
   }
@@ -494,6 +574,17 @@ std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const Geo& g) {
       return std::make_shared<fcl::Cylinderd>(g.radius, 2.0 * g.halfLength);  // axis z, total length
     case ShapeType::Capsule:
       return std::make_shared<fcl::Capsuled>(g.radius, 2.0 * g.halfLength);  // cylinder part, axis z
+    case ShapeType::Mesh: {
+      // FCL's faces: each its vertex count, then its vertices, counter-clockwise from outside
+      const ConvexHull& h = *g.hull;
+      auto faces = std::make_shared<std::vector<int>>();
+      for (int f = 0; f < h.faceCount(); ++f) {
+        faces->push_back(h.faceSize(f));
+        for (int k = 0; k < h.faceSize(f); ++k) faces->push_back(h.faceVertex[h.faceStart[f] + k]);
+      }
+      return std::make_shared<fcl::Convexd>(std::make_shared<const std::vector<Vec3>>(h.vertices), h.faceCount(),
+                                            faces);
+    }
   }
   return nullptr;
 }
@@ -629,6 +720,7 @@ CollisionDetector::CollisionDetector(const WorldModel& model, const std::vector<
     g.half = 0.5 * s.size;
     g.radius = s.radius;
     g.halfLength = 0.5 * s.length;
+    if (s.type == ShapeType::Mesh) g.hull = &s.mesh->hull;
     d.bodySlot[i] = static_cast<int>(d.geo.size());
     d.slotIndex.push_back(static_cast<int>(i));
     d.geo.push_back(g);

@@ -17,6 +17,9 @@
 #ifndef RIGID_WITH_JOINTS
 #define RIGID_WITH_JOINTS 1
 #endif
+#ifndef RIGID_WITH_MESHES
+#define RIGID_WITH_MESHES 1
+#endif
 #if RIGID_WITH_COLLISIONS != RIGID_WITH_SURFACES
 #error "surfaces and collisions come together (modules.h)"
 #endif
@@ -29,4 +32,5 @@ constexpr bool kSurfaces = RIGID_WITH_SURFACES;
 constexpr bool kMedia = RIGID_WITH_MEDIA;
 constexpr bool kCollisions = RIGID_WITH_COLLISIONS;
 constexpr bool kJoints = RIGID_WITH_JOINTS;
+constexpr bool kMeshes = RIGID_WITH_MESHES;
 }  // namespace rigid::modules

@@ -13,6 +13,8 @@ unsigned modulesNeeded(const WorldModel& model) {
   // contact solve): surfaces come with the collision module.
   if (colliding >= 2 || !model.surfaces.empty()) m |= kModuleCollisions | kModuleSurfaces;
   if (!model.joints.empty()) m |= kModuleJoints | kModuleCollisions | kModuleSurfaces;
+  for (const BodyConstants& b : model.bodies)
+    if (b.shape.type == ShapeType::Mesh) m |= kModuleMeshes;
   return m;
 }
 
@@ -25,6 +27,7 @@ std::string moduleNames(unsigned modules) {
   add(kModuleMedia, "media");
   add(kModuleCollisions, "collisions");
   add(kModuleJoints, "joints");
+  add(kModuleMeshes, "meshes");
   return s.empty() ? "none" : s;
 }
 

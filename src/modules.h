@@ -16,11 +16,14 @@ enum ModuleBits : unsigned {
   kModuleMedia = 1u << 1,       // medium: buoyancy, drag
   kModuleCollisions = 1u << 2,  // collision_detection (FCL), constraint_solver
   kModuleJoints = 1u << 3,      // joint_rows: the joints' rows in the constraint solver (with collisions)
+  kModuleMeshes = 1u << 4,      // mesh_file, solid_mass: bodies shaped by mesh files (issue 42)
 };
 
 // The modules a world needs. Surfaces and collisions come together: a surface is a
 // static box of the contact solve, and body pairs meet surfaces through it. Joints come
 // with both: their rows are the constraint solver's, which the collision module holds.
+// Meshes are read and measured by their own module; they collide through the
+// collision module's hulls.
 unsigned modulesNeeded(const WorldModel& model);
 
 // The modules compiled into this binary.

@@ -9,9 +9,11 @@
 #include <initializer_list>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
+#include "mesh_file.h"
 #include "scene_reader.h"
 
 namespace rigid {
@@ -29,7 +31,35 @@ void friction(const Object& o, double& mus, double& muk) {
   if (mus < muk) fail(o.path("staticFriction"), "must be >= kineticFriction (" + num(muk) + "), got " + num(mus));
 }
 
-Shape readShape(const json& j, const std::string& path) {
+// Where the scene's files are: the folder that a mesh's path is relative to (none for a
+// scene given as text), and the notes for the user that reading them leaves.
+struct SceneFiles {
+  std::optional<std::string> folder;
+  std::vector<std::string>* warnings = nullptr;
+};
+
+// A mesh's scale: one factor, or one per axis of the file; each > 0 (a mirror would
+// turn the mesh inside out).
+Vec3 meshScale(const Object& o) {
+  if (!o.has("scale")) return Vec3::Ones();
+  const Vec3 s = o.at("scale").is_number() ? Vec3::Constant(Object::toNumber(o.at("scale"), o.path("scale")))
+                                           : Vec3(Object::toVector(o.at("scale"), o.path("scale"), 3));
+  if (!(s.minCoeff() > 0.0)) fail(o.path("scale"), "must be > 0 (one factor or one per axis)");
+  return s;
+}
+
+Shape readMesh(const Object& o, const SceneFiles& files) {
+  Shape s;
+  s.type = ShapeType::Mesh;
+  const std::string file = o.string("file");
+  if (!files.folder) fail(o.path("file"), "a mesh needs the scene's folder: read the scene from its file");
+  std::string warning;
+  s.mesh = readMeshShape(*files.folder, file, meshScale(o), o.path("file"), warning);
+  if (!warning.empty() && files.warnings) files.warnings->push_back(warning);
+  return s;
+}
+
+Shape readShape(const json& j, const std::string& path, const SceneFiles& files) {
   if (!j.is_object() || !j.contains("type")) fail(path + ".type", "is required");
   if (!j["type"].is_string()) fail(path + ".type", "must be a string");
   const std::string type = j["type"].get<std::string>();
@@ -53,8 +83,10 @@ Shape readShape(const json& j, const std::string& path) {
     s.length = o.number("length");
     if (s.type == ShapeType::Cylinder && !(s.length > 0.0)) fail(o.path("length"), "must be > 0, got " + num(s.length));
     if (s.type == ShapeType::Capsule && s.length < 0.0) fail(o.path("length"), "must be >= 0, got " + num(s.length));
+  } else if (type == "mesh") {
+    s = readMesh(Object(j, path, {"type", "file", "scale"}), files);
   } else {
-    fail(path + ".type", "must be one of sphere, box, cylinder, capsule, got \"" + type + "\"");
+    fail(path + ".type", "must be one of sphere, box, cylinder, capsule, mesh, got \"" + type + "\"");
   }
   return s;
 }
@@ -137,19 +169,26 @@ void readStartAndMaterial(const Object& o, BodyConstants& b) {
   b.rollingResistance = rollingResistance(o);
 }
 
-BodyConstants readBody(const json& j, const std::string& path) {
+// A free body's mass: given, or its density times its shape's volume (one of the two).
+double readMass(const Object& o, const Shape& shape) {
+  if (o.has("mass") && o.has("density")) fail(o.path("density"), "give mass or density, not both");
+  if (!o.has("density")) return positive(o, "mass");
+  return positive(o, "density") * shapeVolume(shape);
+}
+
+BodyConstants readBody(const json& j, const std::string& path, const SceneFiles& files) {
   Object o(j, path,
-           {"name", "shape", "motion", "mass", "inertia", "position", "orientation", "velocity", "angularVelocity",
-            "restitution", "staticFriction", "kineticFriction", "rollingResistance", "collision", "outputs", "inputs",
-            "loads"});
+           {"name", "shape", "motion", "mass", "density", "inertia", "position", "orientation", "velocity",
+            "angularVelocity", "restitution", "staticFriction", "kineticFriction", "rollingResistance", "collision",
+            "outputs", "inputs", "loads"});
   BodyConstants b;
   b.name = identifier(o, "name");
   if (!o.has("shape")) fail(o.path("shape"), "is required");
-  b.shape = readShape(o.at("shape"), o.path("shape"));
+  b.shape = readShape(o.at("shape"), o.path("shape"), files);
   if (readMotion(o) == Motion::Driven) {
     makeDriven(b);
   } else {
-    setMass(b, positive(o, "mass"));
+    setMass(b, readMass(o, b.shape));
     if (o.has("inertia")) setInertia(b, readInertia(o.at("inertia"), o.path("inertia")));
   }
   b.start.position = o.vec3("position", Vec3::Zero());
@@ -331,7 +370,9 @@ void readSurfaces(const Object& o, Scene& scene) {
 
 }  // namespace
 
-Scene parseScene(const std::string& text) {
+namespace {
+
+Scene parseScene(const std::string& text, const SceneFiles& files) {
   json j;
   try {
     j = json::parse(text);
@@ -372,17 +413,26 @@ Scene parseScene(const std::string& text) {
     const double time = m.sleep.time;
     m.sleep.time = positive(s, "sleepTime", &time);
   }
-  m.bodies = readList<BodyConstants>(o, "bodies", true, readBody);
+  m.bodies = readList<BodyConstants>(o, "bodies", true,
+                                     [&](const json& b, const std::string& path) { return readBody(b, path, files); });
   if (m.bodies.empty()) fail("bodies", "must hold at least one body");
   for (size_t i = 0; i < m.bodies.size(); ++i)
     scene.variables.push_back(variablesOf(o.at("bodies")[i], "bodies[" + std::to_string(i) + "]", m.bodies[i]));
   readSurfaces(o, scene);
   m.media = readList<Medium>(o, "media", false, readMedium);
+  for (size_t i = 0; i < m.bodies.size() && !m.media.empty(); ++i)
+    if (m.bodies[i].shape.type == ShapeType::Mesh)
+      fail("bodies[" + std::to_string(i) + "].shape",
+           "a mesh body in a scene with media: not yet (media take spheres, boxes, cylinders and capsules)");
   readJoints(o, scene);
   checkOneNameSpace(m);
   scene.canonicalJson = j.dump();
   return scene;
 }
+
+}  // namespace
+
+Scene parseScene(const std::string& text) { return parseScene(text, SceneFiles{}); }
 
 Scene loadSceneFile(const std::string& path) {
   // The path is UTF-8 (a decoded file URI): on Windows a narrow path would be read in
@@ -391,7 +441,11 @@ Scene loadSceneFile(const std::string& path) {
   if (!in) throw SceneError("scene: cannot open \"" + path + "\"");
   std::ostringstream text;
   text << in.rdbuf();
-  return parseScene(text.str());
+  std::vector<std::string> warnings;
+  const std::filesystem::path folder = std::filesystem::u8path(path).parent_path();
+  Scene scene = parseScene(text.str(), SceneFiles{folder.u8string(), &warnings});
+  scene.warnings = std::move(warnings);
+  return scene;
 }
 
 }  // namespace rigid

@@ -36,9 +36,12 @@ struct Scene {
   WorldModel model;                      // name, gravity, solver, bodies, surfaces, media
   std::vector<BodyVariables> variables;  // one per body
   std::string canonicalJson;             // the parsed file, keys sorted: identifies the scene
+  std::vector<std::string> warnings;     // notes for the user that break no rule (a mesh's hull)
 };
 
+// A scene given as text names no files: a mesh in it is refused.
 Scene parseScene(const std::string& jsonText);
+// A scene file; the mesh files it names are read relative to its folder.
 Scene loadSceneFile(const std::string& path);  // path in UTF-8, on every platform
 
 // Defaults of the scene format, documented in the README.

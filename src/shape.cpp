@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
+
 namespace rigid {
 
 namespace {
@@ -15,6 +17,7 @@ const char* shapeTypeName(ShapeType type) {
     case ShapeType::Box: return "box";
     case ShapeType::Cylinder: return "cylinder";
     case ShapeType::Capsule: return "capsule";
+    case ShapeType::Mesh: return "mesh";
   }
   return "?";
 }
@@ -26,6 +29,7 @@ double shapeVolume(const Shape& s) {
     case ShapeType::Box: return s.size.prod();
     case ShapeType::Cylinder: return kPi * r * r * s.length;
     case ShapeType::Capsule: return kPi * r * r * s.length + 4.0 / 3.0 * kPi * r * r * r;
+    case ShapeType::Mesh: return s.mesh->volume;
   }
   return 0.0;
 }
@@ -60,8 +64,14 @@ Vec3 solidPrincipalInertia(const Shape& s, double m) {
       const double Izz = 0.5 * mCyl * r * r + 2.0 * 0.4 * mCap * r * r;
       return Vec3(Ixx, Ixx, Izz);
     }
+    case ShapeType::Mesh: return Eigen::SelfAdjointEigenSolver<Mat3>(solidInertia(s, m)).eigenvalues();
   }
   return Vec3::Zero();
+}
+
+Mat3 solidInertia(const Shape& s, double m) {
+  if (s.type == ShapeType::Mesh) return s.mesh->inertiaPerDensity * (m / s.mesh->volume);
+  return solidPrincipalInertia(s, m).asDiagonal();
 }
 
 double halfThickness(const Shape& s) {
@@ -70,6 +80,7 @@ double halfThickness(const Shape& s) {
     case ShapeType::Capsule: return s.radius;
     case ShapeType::Box: return 0.5 * s.size.minCoeff();
     case ShapeType::Cylinder: return std::min(s.radius, 0.5 * s.length);
+    case ShapeType::Mesh: return s.mesh->halfThickness;
   }
   return 0.0;
 }
@@ -80,6 +91,7 @@ double boundingRadius(const Shape& s) {
     case ShapeType::Capsule: return s.radius + 0.5 * s.length;
     case ShapeType::Box: return 0.5 * s.size.norm();
     case ShapeType::Cylinder: return std::hypot(s.radius, 0.5 * s.length);
+    case ShapeType::Mesh: return s.mesh->boundingRadius;
   }
   return 0.0;
 }

@@ -1,17 +1,21 @@
 // Body shapes of the scene format and the mass properties of their solids.
 #pragma once
 
+#include <memory>
+
 #include "math_types.h"
+#include "mesh_shape.h"
 
 namespace rigid {
 
-enum class ShapeType { Sphere, Box, Cylinder, Capsule };
+enum class ShapeType { Sphere, Box, Cylinder, Capsule, Mesh };
 
 struct Shape {
   ShapeType type = ShapeType::Sphere;
-  double radius = 0.0;       // m: sphere, cylinder, capsule
-  Vec3 size = Vec3::Zero();  // m: box, full edge lengths (lx, ly, lz)
-  double length = 0.0;       // m: cylinder length; capsule's cylinder part. Axis = body z.
+  double radius = 0.0;                    // m: sphere, cylinder, capsule
+  Vec3 size = Vec3::Zero();               // m: box, full edge lengths (lx, ly, lz)
+  double length = 0.0;                    // m: cylinder length; capsule's cylinder part. Axis = body z.
+  std::shared_ptr<const MeshShape> mesh;  // mesh: the file's solid and hull, body frame
 };
 
 const char* shapeTypeName(ShapeType type);
@@ -27,7 +31,12 @@ double boundingRadius(const Shape& shape);
 double shapeVolume(const Shape& shape);
 
 // Principal moments (kg m^2) of the homogeneous solid of this mass about its centre of
-// mass, in the body frame, whose axes are the shape's symmetry axes.
+// mass. A primitive's body axes are its symmetry axes, so these are its tensor's
+// diagonal; a mesh's body axes are its file's, and its tensor is solidInertia's.
 Vec3 solidPrincipalInertia(const Shape& shape, double mass);
+
+// Inertia tensor (kg m^2) of the homogeneous solid of this mass about its centre of
+// mass, in the body frame.
+Mat3 solidInertia(const Shape& shape, double mass);
 
 }  // namespace rigid

@@ -23,7 +23,8 @@ namespace rigid {
 
 unsigned modulesBuilt() {
   return (modules::kSurfaces ? kModuleSurfaces : 0u) | (modules::kMedia ? kModuleMedia : 0u) |
-         (modules::kCollisions ? kModuleCollisions : 0u) | (modules::kJoints ? kModuleJoints : 0u);
+         (modules::kCollisions ? kModuleCollisions : 0u) | (modules::kJoints ? kModuleJoints : 0u) |
+         (modules::kMeshes ? kModuleMeshes : 0u);
 }
 
 WorldData initialData(const WorldModel& model) {

@@ -1,15 +1,17 @@
 """Mesh files read when an FMU is built (python/rigidfmu/meshes.py and
 mesh_conversion.py, decision 0006): the FILE.mesh.json of meshes made with trimesh
 itself in every format, against closed forms (counts, volumes, outward faces); the path
-rule's refusals, each naming the field; and the resources staged for a scene."""
+rule's refusals, each naming the field; the resources staged for a scene, and the FMU
+that carries them (with a stand-in core: the core's mesh reading is the core's tests)."""
 import json
 import pathlib
+import zipfile
 
 import numpy as np
 import pytest
 import trimesh
 
-from rigidfmu import mesh_conversion, meshes
+from rigidfmu import fmu_package, mesh_conversion, meshes, native
 from rigidfmu.errors import SceneError
 
 FIELD = "bodies[0].shape.file"
@@ -223,3 +225,52 @@ def test_a_scene_without_meshes_stages_its_file_alone(tmp_path):
     assert meshes.stage_resources(scene, tmp_path / "resources") == ["scene.json"]
     assert (tmp_path / "resources" / "scene.json").read_bytes() == scene.read_bytes()
     assert [p.name for p in (tmp_path / "resources").iterdir()] == ["scene.json"]
+
+
+FAKE_DESCRIBE = """#!/bin/sh
+# rigidfmu-describe SCENE OUT --fmi N, as a core that reads the staged mesh files: the
+# scene named "Refused" is refused naming its staged mesh file, any other is described.
+folder=$(dirname "$1")
+test -f "$folder/parts/binary.stl.mesh.json" || { echo "$1: no staged mesh" >&2; exit 1; }
+if grep -q Refused "$1"; then echo "$1: bodies[0].shape.file: $folder/parts/binary.stl.mesh.json: open" >&2; exit 1; fi
+echo '<fmiModelDescription/>' > "$2/modelDescription.xml"; echo M > "$2/model_identifier"; echo 0 > "$2/modules"
+"""
+
+
+@pytest.fixture
+def fake_core(tmp_path):
+    """A stand-in for the core's binaries (the core's mesh reading is tested with the core)."""
+    core = tmp_path / "core"
+    core.mkdir()
+    (core / "rigidfmu-describe").write_text(FAKE_DESCRIBE)
+    (core / "rigidfmu-describe").chmod(0o755)
+    (core / "rigidfmu_fmi2_0.so").write_bytes(b"library")
+    return native.Native(core)
+
+
+def mesh_scene(folder: pathlib.Path, name: str) -> pathlib.Path:
+    (folder / "parts").mkdir(parents=True)
+    box(folder / "parts")
+    scene = folder / "m.json"
+    scene.write_text(json.dumps({"name": name, "bodies": [{"name": "a", "shape": {"type": "mesh",
+                                                                                "file": "parts/binary.stl"}}]}))
+    return scene
+
+
+def test_the_core_checks_the_staged_scene_and_its_message_names_the_users_files(tmp_path, fake_core):
+    scene = mesh_scene(tmp_path / "user", "Refused")
+    with pytest.raises(SceneError) as refused:
+        fmu_package.describe(scene, fake_core)
+    assert str(refused.value) == f"{scene}: bodies[0].shape.file: {scene.parent}/parts/binary.stl.mesh.json: open"
+
+
+def test_the_fmu_carries_the_staged_resources(tmp_path, fake_core, monkeypatch):
+    monkeypatch.setattr(fmu_package, "runtime_dependencies", lambda library: [])  # not a real library
+    scene = mesh_scene(tmp_path / "user", "M")
+    fmu_package.package(scene, tmp_path / "m.fmu", fake_core)
+    with zipfile.ZipFile(tmp_path / "m.fmu") as z:
+        assert z.namelist() == ["modelDescription.xml", "binaries/linux64/M.so", "resources/parts/binary.stl",
+                                "resources/parts/binary.stl.mesh.json", "resources/scene.json"]
+        assert z.read("resources/scene.json") == scene.read_bytes()
+        assert z.read("resources/parts/binary.stl.mesh.json") == mesh_conversion.convert(
+            scene.parent / "parts/binary.stl", "parts/binary.stl", FIELD)

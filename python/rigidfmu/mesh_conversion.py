@@ -54,10 +54,14 @@ def merged(vertices: np.ndarray, triangles: np.ndarray) -> tuple[np.ndarray, np.
     return unique, inverse.reshape(-1)[np.asarray(triangles, dtype=np.int64)]
 
 
-def same_plane(equations: np.ndarray, i: int, j: int, size: float) -> bool:
-    normal_i, normal_j = equations[i, :3], equations[j, :3]
-    return (np.max(np.abs(normal_i - normal_j)) <= PLANE_TOLERANCE
-            and abs(equations[i, 3] - equations[j, 3]) <= PLANE_TOLERANCE * size)
+def coplanar_neighbours(hull: ConvexHull, size: float) -> np.ndarray:
+    """The pairs (i, j) of neighbouring hull triangles that lie in one plane."""
+    i = np.repeat(np.arange(len(hull.simplices)), hull.neighbors.shape[1])
+    j = hull.neighbors.reshape(-1)
+    normals, offsets = hull.equations[:, :3], hull.equations[:, 3]
+    same = ((np.abs(normals[i] - normals[j]).max(axis=1) <= PLANE_TOLERANCE)
+            & (np.abs(offsets[i] - offsets[j]) <= PLANE_TOLERANCE * size))
+    return np.column_stack((i[same], j[same]))
 
 
 def coplanar_groups(hull: ConvexHull, size: float) -> list[list[int]]:
@@ -72,23 +76,31 @@ def coplanar_groups(hull: ConvexHull, size: float) -> list[list[int]]:
             i = parent[i]
         return i
 
-    for i, neighbours in enumerate(hull.neighbors):
-        for j in neighbours:
-            if same_plane(hull.equations, i, j, size):
-                a, b = root(i), root(int(j))
-                parent[max(a, b)] = min(a, b)
+    for i, j in coplanar_neighbours(hull, size).tolist():
+        a, b = root(i), root(j)
+        parent[max(a, b)] = min(a, b)
     groups = {}
     for i in range(len(parent)):
         groups.setdefault(root(i), []).append(i)
     return list(groups.values())
 
 
+def outward_triangle(points: np.ndarray, normal: np.ndarray, corners) -> list[int] | None:
+    """A hull triangle alone in its plane, counter-clockwise seen from outside (qhull's
+    simplices are not wound alike); None when it has no area."""
+    a, b, c = (int(k) for k in corners)
+    turn = np.cross(points[b] - points[a], points[c] - points[a]) @ normal
+    if turn == 0.0:
+        return None
+    return [a, b, c] if turn > 0.0 else [a, c, b]
+
+
 def face_polygon(points: np.ndarray, normal: np.ndarray, corners: np.ndarray) -> list[int] | None:
     """The convex polygon of the points `corners` (indexes into `points`) in a plane of
-    outward unit `normal`, counter-clockwise seen from outside, starting at its smallest
-    index; None when they span no area. Their 2-D hull in a basis (u, v) with u x v =
-    normal is counter-clockwise (qhull's order in 2-D), and leaves out any vertex
-    inside the face or inside one of its edges."""
+    outward unit `normal`, counter-clockwise seen from outside; None when they span no
+    area. Their 2-D hull in a basis (u, v) with u x v = normal is counter-clockwise
+    (qhull's order in 2-D), and leaves out any vertex inside the face or inside one of
+    its edges."""
     axis = np.zeros(3)
     axis[np.argmin(np.abs(normal))] = 1.0
     u = np.cross(normal, axis)
@@ -99,9 +111,7 @@ def face_polygon(points: np.ndarray, normal: np.ndarray, corners: np.ndarray) ->
         order = ConvexHull(flat).vertices
     except QhullError:
         return None
-    polygon = [int(corners[k]) for k in order]
-    first = polygon.index(min(polygon))
-    return polygon[first:] + polygon[:first]
+    return [int(corners[k]) for k in order]
 
 
 def convex_hull(vertices: np.ndarray) -> dict | None:
@@ -114,10 +124,14 @@ def convex_hull(vertices: np.ndarray) -> dict | None:
     size = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
     polygons = []
     for group in coplanar_groups(hull, size):
-        corners = np.unique(hull.simplices[group])
-        polygon = face_polygon(vertices, hull.equations[group[0], :3], corners)
+        normal = hull.equations[group[0], :3]
+        if len(group) == 1:
+            polygon = outward_triangle(vertices, normal, hull.simplices[group[0]])
+        else:
+            polygon = face_polygon(vertices, normal, np.unique(hull.simplices[group]))
         if polygon is not None:
-            polygons.append(polygon)
+            first = polygon.index(min(polygon))
+            polygons.append(polygon[first:] + polygon[:first])
     used = sorted({i for polygon in polygons for i in polygon})
     index = {old: new for new, old in enumerate(used)}
     faces = sorted([index[i] for i in polygon] for polygon in polygons)

@@ -45,6 +45,17 @@ def newell_normal(points) -> np.ndarray:
                      ((p[:, 0] - q[:, 0]) * (p[:, 1] + q[:, 1])).sum()])
 
 
+def outward_normals(hull: dict) -> list[np.ndarray]:
+    """Each hull face's Newell normal, checked to point away from the hull's centroid
+    (the face counter-clockwise seen from outside)."""
+    points = np.array(hull["vertices"])
+    centroid = points.mean(axis=0)
+    normals = [newell_normal(points[face]) for face in hull["faces"]]
+    for face, normal in zip(hull["faces"], normals):
+        assert normal @ (points[face].mean(axis=0) - centroid) > 0, face
+    return normals
+
+
 def box(tmp_path, name="binary.stl") -> pathlib.Path:
     return export(trimesh.creation.box(extents=EXTENTS), tmp_path / name, FORMATS[name])
 
@@ -62,12 +73,7 @@ def test_a_box_gives_its_8_vertices_12_triangles_and_a_hull_of_6_quads(tmp_path,
     assert {tuple(v) for v in hull} == corners
     faces = mesh["hull"]["faces"]
     assert len(faces) == 6 and all(len(f) == 4 and len(set(f)) == 4 for f in faces)
-    centroid = hull.mean(axis=0)
-    outward = set()
-    for face in faces:
-        normal = newell_normal(hull[face])
-        assert normal @ (hull[face].mean(axis=0) - centroid) > 0  # counter-clockwise seen from outside
-        outward.add(tuple(np.round(normal / np.linalg.norm(normal), 12) + 0.0))
+    outward = {tuple(np.round(n / np.linalg.norm(n), 12) + 0.0) for n in outward_normals(mesh["hull"])}
     assert outward == {tuple(s * e) for e in np.eye(3) for s in (1.0, -1.0)}
 
 
@@ -119,6 +125,7 @@ def test_a_solid_without_coplanar_faces_has_its_triangles_as_hull(tmp_path, soli
     assert signed_volume(mesh["vertices"], mesh["triangles"]) == pytest.approx(volume, rel=1e-7)  # OBJ's 8 decimals
     assert len(mesh["hull"]["vertices"]) == vertices
     assert sorted(map(len, mesh["hull"]["faces"])) == [3] * faces
+    assert len(outward_normals(mesh["hull"])) == faces
 
 
 def test_two_conversions_give_the_same_bytes(tmp_path):

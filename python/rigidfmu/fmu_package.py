@@ -9,12 +9,16 @@
     binaries/win64/<modelIdentifier>.dll    the same sources cross-compiled with
                                             MinGW-w64, everything linked in statically:
                                             it needs only Windows' own DLLs
-    resources/scene.json
+    resources/scene.json                    the user's scene file, byte for byte
+    resources/<file>, <file>.mesh.json      each mesh file the scene names, at the path
+                                            it gives, and the triangles and hull read
+                                            from it (meshes.py, decision 0006)
 
 An FMI 3.0 FMU (fmi=3) has the same layout with FMI 3's platform folders,
 binaries/x86_64-linux and binaries/x86_64-windows.
 
-The describe tool checks the scene first; its message names the field and the limit.
+The describe tool checks the staged scene first, reading the staged FILE.mesh.json files
+as the FMU will; its message names the field and the limit.
 """
 import pathlib
 import re
@@ -24,6 +28,7 @@ import tempfile
 import zipfile
 from dataclasses import dataclass
 
+from rigidfmu import meshes
 from rigidfmu import native as native_module
 from rigidfmu.errors import NativeError, PackagingError, SceneError
 
@@ -42,12 +47,26 @@ class Description:
 
 def describe(scene: pathlib.Path, native: native_module.Native, fmi: int = 2) -> Description:
     """The scene checked and described by the core (modelDescription.xml for FMI 2.0 or
-    3.0); SceneError with the core's message."""
+    3.0); SceneError with the core's message. Its mesh files are staged first, as for
+    the FMU, so that the core checks what the FMU will read (`rigidfmu check`)."""
+    with tempfile.TemporaryDirectory(prefix="rigidfmu-resources-") as stage:
+        resources = pathlib.Path(stage) / "resources"
+        meshes.stage_resources(scene, resources)
+        return describe_staged(scene, resources, native, fmi)
+
+
+def describe_staged(scene: pathlib.Path, resources: pathlib.Path, native: native_module.Native,
+                    fmi: int) -> Description:
+    """describe() of the scene staged in `resources`; the core's message names the
+    user's files, not the staged copies."""
+    staged = resources / "scene.json"
     with tempfile.TemporaryDirectory(prefix="rigidfmu-describe-") as out:
-        run = subprocess.run([str(native.describe), str(scene), out, "--fmi", str(fmi)], capture_output=True,
+        run = subprocess.run([str(native.describe), str(staged), out, "--fmi", str(fmi)], capture_output=True,
                              text=True)
         if run.returncode != 0:
-            raise SceneError(run.stderr.strip() or f"{scene}: refused (exit status {run.returncode})")
+            message = run.stderr.strip().replace(str(staged), str(scene))
+            message = message.replace(str(resources) + "/", str(scene.parent) + "/")
+            raise SceneError(message or f"{scene}: refused (exit status {run.returncode})")
         folder = pathlib.Path(out)
         return Description((folder / "modelDescription.xml").read_bytes(),
                            (folder / "model_identifier").read_text().strip(),
@@ -89,16 +108,18 @@ def package(scene: pathlib.Path, out: pathlib.Path, native: native_module.Native
     `native` has them; returns the names of the bundled libraries."""
     if fmi not in (2, 3):
         raise PackagingError(f"FMI version {fmi}: 2 or 3")
-    described = describe(scene, native, fmi)
-    try:
-        variant = native.variant(described.modules, fmi)
-    except NativeError as e:
-        raise PackagingError(str(e)) from e
-    library = native.library(variant, fmi)
-    dll = native.win64_library(variant, fmi)
-    if dll is not None and not dll.exists():
-        raise PackagingError(f"no win64 binary for modules {described.modules}: {dll}")
     with tempfile.TemporaryDirectory(prefix="rigidfmu-fmu-") as stage:
+        resources = pathlib.Path(stage) / "resources"
+        staged = meshes.stage_resources(scene, resources)
+        described = describe_staged(scene, resources, native, fmi)
+        try:
+            variant = native.variant(described.modules, fmi)
+        except NativeError as e:
+            raise PackagingError(str(e)) from e
+        library = native.library(variant, fmi)
+        dll = native.win64_library(variant, fmi)
+        if dll is not None and not dll.exists():
+            raise PackagingError(f"no win64 binary for modules {described.modules}: {dll}")
         linux, windows = ("linux64", "win64") if fmi == 2 else ("x86_64-linux", "x86_64-windows")
         binaries = pathlib.Path(stage) / "binaries" / linux
         binaries.mkdir(parents=True)
@@ -114,6 +135,7 @@ def package(scene: pathlib.Path, out: pathlib.Path, native: native_module.Native
                 z.write(f, f"binaries/{linux}/{f.name}")
             if dll is not None:
                 z.write(dll, f"binaries/{windows}/{described.model_identifier}.dll")
-            z.write(scene, "resources/scene.json")
+            for name in staged:  # sorted; a scene without meshes: resources/scene.json alone, as before
+                z.write(resources / name, f"resources/{name}")
         partial.replace(out)  # a reader never sees half an FMU
     return [d.name for d in dependencies]

@@ -1,7 +1,8 @@
 // rigidfmu-describe SCENE.json OUT_DIR [--fmi 3]
 // Checks a scene and writes OUT_DIR/modelDescription.xml (FMI 2.0, or 3.0 with --fmi 3), OUT_DIR/model_identifier
 // (the scene's name, which names the FMU's binary) and OUT_DIR/modules (the mask of
-// the physics modules the scene needs, src/modules.h). Exit status 1 with the scene's
+// the physics modules the scene needs, src/modules.h) and OUT_DIR/warnings (notes for
+// the user that break no rule, a line each: a mesh's hull much larger than its solid). Exit status 1 with the scene's
 // error message on stderr when the scene breaks a rule.
 #include <fstream>
 #include <iostream>
@@ -24,6 +25,8 @@ int main(int argc, char** argv) {
         << rigidfmu::modelDescriptionXml(scene, fmi3 ? rigidfmu::FmiVersion::Fmi3 : rigidfmu::FmiVersion::Fmi2);
     std::ofstream(dir + "/model_identifier") << scene.model.name;
     std::ofstream(dir + "/modules") << rigid::modulesNeeded(scene.model);
+    std::ofstream warnings(dir + "/warnings");
+    for (const std::string& w : scene.warnings) warnings << w << "\n";
     return 0;
   } catch (const std::exception& e) {
     std::cerr << argv[1] << ": " << e.what() << "\n";

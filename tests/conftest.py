@@ -40,15 +40,23 @@ def pytest_sessionstart(session):
         bring_trees_up_to_date()
 
 
-def build_fmu(scene: dict, fmi: int = 2) -> pathlib.Path:
+def build_fmu(scene: dict, fmi: int = 2, files: dict | None = None) -> pathlib.Path:
     """The FMU of a scene (a dict in the scene format), built once per content and FMI
-    version (2 or 3)."""
+    version (2 or 3). `files`: {relative path: bytes} written beside the scene (the mesh
+    files it names)."""
     text = json.dumps(scene, indent=1, sort_keys=True)
-    key = hashlib.sha256(text.encode()).hexdigest()[:16]
+    digest = hashlib.sha256(text.encode())
+    for name, data in sorted((files or {}).items()):
+        digest.update(name.encode() + b"\0" + data)
+    key = digest.hexdigest()[:16]
     fmu = FMU_DIR / f"{scene.get('name', 'scene')}-{key}{'' if fmi == 2 else '-fmi3'}.fmu"
     if not fmu.exists():
         FMU_DIR.mkdir(parents=True, exist_ok=True)
-        scene_file = FMU_DIR / f"{scene.get('name', 'scene')}-{key}.json"
+        folder = FMU_DIR / f"{scene.get('name', 'scene')}-{key}" if files else FMU_DIR
+        scene_file = folder / f"{scene.get('name', 'scene')}-{key}.json"
+        for name, data in (files or {}).items():
+            (folder / name).parent.mkdir(parents=True, exist_ok=True)
+            (folder / name).write_bytes(data)
         scene_file.write_text(text)
         env = dict(os.environ, RIGIDFMU_SKIP_SETUP="1")
         # a sanitizer runtime preloaded into the tests (ASan/UBSan build) is not for the
@@ -72,8 +80,8 @@ def slave(fmu_of):
     from rigidfmu.driver import Slave
     opened = []
 
-    def open_(scene, fmi=2, start=None):
-        s = Slave(fmu_of(scene, fmi=fmi))
+    def open_(scene, fmi=2, start=None, files=None):
+        s = Slave(fmu_of(scene, fmi=fmi, files=files))
         opened.append(s)
         s.initialize(start)
         return s

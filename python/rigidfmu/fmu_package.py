@@ -24,6 +24,7 @@ import pathlib
 import re
 import shutil
 import subprocess
+import sys
 import tempfile
 import zipfile
 from dataclasses import dataclass
@@ -43,6 +44,7 @@ class Description:
     model_description: bytes
     model_identifier: str
     modules: str
+    warnings: tuple[str, ...] = ()  # notes that break no rule (a mesh's hull much larger than its solid)
 
 
 def describe(scene: pathlib.Path, native: native_module.Native, fmi: int = 2) -> Description:
@@ -68,9 +70,12 @@ def describe_staged(scene: pathlib.Path, resources: pathlib.Path, native: native
             message = message.replace(str(resources) + "/", str(scene.parent) + "/")
             raise SceneError(message or f"{scene}: refused (exit status {run.returncode})")
         folder = pathlib.Path(out)
+        warnings = tuple((folder / "warnings").read_text().splitlines())
+        for warning in warnings:
+            print(f"rigidfmu: warning: {warning}", file=sys.stderr)
         return Description((folder / "modelDescription.xml").read_bytes(),
                            (folder / "model_identifier").read_text().strip(),
-                           (folder / "modules").read_text().strip())
+                           (folder / "modules").read_text().strip(), warnings)
 
 
 def runtime_dependencies(library: pathlib.Path) -> list[pathlib.Path]:

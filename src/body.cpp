@@ -25,7 +25,7 @@ void storeInertia(BodyConstants& body, const Mat3& Ibody) {
 void setMass(BodyConstants& body, double mass) {
   body.mass = mass;
   if (!body.inertiaFromShape) return;
-  if (body.shape.type == ShapeType::Mesh) {  // the file's axes need not be principal
+  if (body.shape.type == ShapeType::Mesh || body.shape.type == ShapeType::Compound) {  // axes need not be principal
     storeInertia(body, solidInertia(body.shape, mass));
     return;
   }

@@ -23,6 +23,7 @@
 #include <utility>
 
 #include "broadphase.h"
+#include "compound_shape.h"
 #include "contact_rules.h"
 
 namespace rigid {
@@ -57,7 +58,22 @@ struct Geo {
   double halfLength = 0.0;           // m, cylinder, capsule: half the length along shape z
   Mat3 R = Mat3::Identity();         // shape frame -> world
   Vec3 p = Vec3::Zero();             // m, centre, world frame
+  // A compound's part: its pose in the body frame, which the body's pose carries.
+  bool part = false;
+  Mat3 partR = Mat3::Identity();
+  Vec3 partP = Vec3::Zero();
 };
+
+// The geometry of a shape (not a compound) at rest in its own frame.
+Geo geometryOf(const Shape& s) {
+  Geo g;
+  g.type = s.type;
+  g.half = 0.5 * s.size;
+  g.radius = s.radius;
+  g.halfLength = 0.5 * s.length;
+  if (s.type == ShapeType::Mesh) g.hull = &s.mesh->hull;
+  return g;
+}
 
 // Support function: max over the shape of d.x, for x relative to the centre.
 double supportExtent(const Geo& g, const Vec3& d) {
@@ -75,6 +91,7 @@ double supportExtent(const Geo& g, const Vec3& d) {
       for (const Vec3& v : g.hull->vertices) most = std::max(most, v.dot(local));
       return most;
     }
+    case ShapeType::Compound: break;  // (a slot per part: no Geo is a compound)
   }
   return 0.0;
 }
@@ -98,6 +115,7 @@ inline Vec3 aabbHalfExtent(const Geo& g, const Mat3& R) {
       for (const Vec3& v : g.hull->vertices) e = e.cwiseMax((R * v).cwiseAbs());
       return e;
     }
+    case ShapeType::Compound: break;  // (a slot per part: no Geo is a compound)
   }
   return Vec3::Zero();
 }
@@ -130,6 +148,7 @@ Vec3 supportPoint(const Geo& g, const Vec3& d) {
         if (v.dot(local) > best->dot(local)) best = &v;
       return g.p + g.R * *best;
     }
+    case ShapeType::Compound: break;  // (a slot per part: no Geo is a compound)
   }
   return g.p;
 }
@@ -340,6 +359,7 @@ int incidentFeature(const Geo& inc, const Vec3& m, Vec3* pts) {
     case ShapeType::Cylinder:
     case ShapeType::Capsule: return incidentRoundFeature(inc, m, pts);
     case ShapeType::Mesh: return incidentHullFace(inc, m, pts);
+    case ShapeType::Compound: break;  // (a slot per part: no Geo is a compound)
   }
   return 0;
 }
@@ -585,6 +605,7 @@ std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const Geo& g) {
       return std::make_shared<fcl::Convexd>(std::make_shared<const std::vector<Vec3>>(h.vertices), h.faceCount(),
                                             faces);
     }
+    case ShapeType::Compound: break;  // (a slot per part: no Geo is a compound)
   }
   return nullptr;
 }
@@ -608,16 +629,18 @@ struct CollisionDetector::Impl {
   struct Pair {
     int a, b, surface;
     int slotA, slotB;
+    // by bodies, then by slots: a compound's parts are slots of one body
     bool operator<(const Pair& o) const {
       const int kind = surface >= 0, okind = o.surface >= 0;
       const int other = kind ? surface : b, oother = okind ? o.surface : o.b;
-      return std::tie(a, kind, other) < std::tie(o.a, okind, oother);
+      return std::tie(a, kind, other, slotA, slotB) < std::tie(o.a, okind, oother, o.slotA, o.slotB);
     }
   };
 
-  int nBodySlots = 0;             // slots [0, nBodySlots): bodies that meet something; then surfaces
+  int nBodies = 0;                // bodies of the model
+  int nBodySlots = 0;             // slots [0, nBodySlots): bodies that meet something (a slot per
+                                  // compound part); then surfaces
   std::vector<int> slotIndex;     // slot -> body or surface index
-  std::vector<int> bodySlot;      // body index -> slot, -1 when it meets nothing
   std::vector<char> meetsBodies;  // per body slot: pairs with other bodies too, not only surfaces
   std::vector<char> immovable;    // per slot: a surface or a driven body (no pair of two of them)
   // body pairs that a joint joins without "collide": their contacts are not detected
@@ -664,6 +687,7 @@ struct CollisionDetector::Impl {
   // moves (surfaces, driven bodies): contacts answer neither.
   bool candidate(int s1, int s2, Pair& p) const {
     if (immovable[s1] && immovable[s2]) return false;
+    if (isBody(s1) && isBody(s2) && slotIndex[s1] == slotIndex[s2]) return false;  // a compound's parts
     if (isBody(s1) && isBody(s2) && !(meetsBodies[s1] && meetsBodies[s2])) return false;
     if (isBody(s1) && isBody(s2) && joined(slotIndex[s1], slotIndex[s2])) return false;
     if (!isBody(s1) || (isBody(s2) && slotIndex[s2] < slotIndex[s1])) std::swap(s1, s2);
@@ -708,22 +732,28 @@ CollisionDetector::CollisionDetector(const WorldModel& model, const std::vector<
     throw std::invalid_argument("CollisionDetector: meetsSurfaces has " + std::to_string(meetsSurfaces.size()) +
                                 " entries for " + std::to_string(model.bodies.size()) + " bodies");
   Impl& d = *impl_;
-  d.bodySlot.assign(model.bodies.size(), -1);
+  d.nBodies = static_cast<int>(model.bodies.size());
   for (size_t i = 0; i < model.bodies.size(); ++i) {
     const bool onSurfaces = !meetsSurfaces.empty() && meetsSurfaces[i];
     if (!collides[i] && !onSurfaces) continue;
-    d.meetsBodies.push_back(collides[i]);
-    d.immovable.push_back(driven(model.bodies[i]));
+    auto addSlot = [&](const Geo& g) {
+      d.meetsBodies.push_back(collides[i]);
+      d.immovable.push_back(driven(model.bodies[i]));
+      d.slotIndex.push_back(static_cast<int>(i));
+      d.geo.push_back(g);
+    };
     const Shape& s = model.bodies[i].shape;
-    Geo g;
-    g.type = s.type;
-    g.half = 0.5 * s.size;
-    g.radius = s.radius;
-    g.halfLength = 0.5 * s.length;
-    if (s.type == ShapeType::Mesh) g.hull = &s.mesh->hull;
-    d.bodySlot[i] = static_cast<int>(d.geo.size());
-    d.slotIndex.push_back(static_cast<int>(i));
-    d.geo.push_back(g);
+    if (s.type != ShapeType::Compound) {
+      addSlot(geometryOf(s));
+      continue;
+    }
+    for (const ShapePart& part : s.compound->parts) {
+      Geo g = geometryOf(part.shape);
+      g.part = true;
+      g.partR = part.orientation.toRotationMatrix();
+      g.partP = part.position;
+      addSlot(g);
+    }
   }
   d.nBodySlots = static_cast<int>(d.geo.size());
   for (const JointConstants& j : model.joints)
@@ -769,9 +799,14 @@ Vec3 CollisionDetector::Impl::pose(int slot, const std::vector<BodyState>& Y) {
   Geo& g = geo[slot];
   const BodyState& y = Y[slotIndex[slot]];
   const Mat3 R = y.q.normalized().toRotationMatrix();
+  placed[slot] = false;
+  if (g.part) {
+    g.R = R * g.partR;
+    g.p = y.X + R * g.partP;
+    return aabbHalfExtent(g, g.R);
+  }
   g.R = R;
   g.p = y.X;
-  placed[slot] = false;
   return aabbHalfExtent(g, R);
 }
 
@@ -794,12 +829,12 @@ void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, s
                                StepProfile* profile, double speculative, const Sleepers* sleepers) {
   Impl& d = *impl_;
   const auto start = profile ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
-  if (Y.size() != d.bodySlot.size())
+  if (Y.size() != static_cast<size_t>(d.nBodies))
     throw std::invalid_argument("CollisionDetector::detect: " + std::to_string(Y.size()) + " states for " +
-                                std::to_string(d.bodySlot.size()) + " bodies");
-  if (sleepers && sleepers->asleep.size() != d.bodySlot.size())
+                                std::to_string(d.nBodies) + " bodies");
+  if (sleepers && sleepers->asleep.size() != static_cast<size_t>(d.nBodies))
     throw std::invalid_argument("CollisionDetector::detect: " + std::to_string(sleepers->asleep.size()) +
-                                " sleep flags for " + std::to_string(d.bodySlot.size()) + " bodies");
+                                " sleep flags for " + std::to_string(d.nBodies) + " bodies");
   margin = std::max(margin, 0.0);
   speculative = std::max(speculative, margin);
   out.clear();
@@ -858,12 +893,12 @@ void CollisionDetector::Impl::pairWithSleepers(const Sleepers& sleepers, const s
 void CollisionDetector::Impl::sortPairs() {
   pairs.clear();
   if (found.empty()) return;  // (bodies far apart: no per-body work)
-  firstOf.assign(bodySlot.size() + 1, 0);
+  firstOf.assign(nBodies + 1, 0);
   for (const Pair& p : found) ++firstOf[p.a + 1];
   for (size_t b = 1; b < firstOf.size(); ++b) firstOf[b] += firstOf[b - 1];
   pairs.resize(found.size());
   for (const Pair& p : found) pairs[firstOf[p.a]++] = p;  // firstOf[a]: now where a's pairs end
-  for (size_t b = 0, begin = 0; b < bodySlot.size(); begin = firstOf[b++])
+  for (size_t b = 0, begin = 0; b < static_cast<size_t>(nBodies); begin = firstOf[b++])
     std::sort(pairs.begin() + begin, pairs.begin() + firstOf[b]);
 }
 

@@ -20,9 +20,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The scene reader refuses a mesh body in a scene with media (issue 42 left it): the
-// shape functions below never see one.
-[[noreturn]] void noMeshInMedia() { throw std::logic_error("media: a mesh body reached the medium's forces"); }
+// The scene reader refuses a mesh or compound body in a scene with media (issue 42 left
+// it): the shape functions below never see one.
+[[noreturn]] void noMeshInMedia() { throw std::logic_error("media: a mesh or compound body reached the medium"); }
 
 // ---- submerged part: convex polyhedra clipped by the medium's box -----------------------
 
@@ -450,7 +450,8 @@ SubmergedPart submergedPart(const Shape& shape, const Vec3& X_W, const Mat3& R_W
     case ShapeType::Box: bound = 0.5 * shape.size.norm(); break;
     case ShapeType::Cylinder: bound = std::hypot(1.1 * r, 0.5 * l); break;
     case ShapeType::Capsule: bound = 0.5 * l + 1.1 * r; break;
-    case ShapeType::Mesh: noMeshInMedia();
+    case ShapeType::Mesh:
+    case ShapeType::Compound: noMeshInMedia();
   }
   for (int k = 0; k < 3; ++k)
     if (hi[k] <= -bound || lo[k] >= bound) return SubmergedPart{0.0, X_W};  // outside
@@ -464,7 +465,8 @@ SubmergedPart submergedPart(const Shape& shape, const Vec3& X_W, const Mat3& R_W
     case ShapeType::Cylinder: makeCylinder(r, l, R_WB, P); break;
     case ShapeType::Capsule: makeCapsule(r, l, R_WB, P); break;
     case ShapeType::Sphere: break;
-    case ShapeType::Mesh: noMeshInMedia();
+    case ShapeType::Mesh:
+    case ShapeType::Compound: noMeshInMedia();
   }
   SubmergedPart part = clipPolyhedron(P, X_W, lo, hi);
   const double full = shapeVolume(shape);
@@ -485,7 +487,8 @@ double projectedArea(const Shape& shape, const Vec3& d) {
     }
     case ShapeType::Cylinder: return kPi * r * r * axial + 2.0 * r * l * side;
     case ShapeType::Capsule: return kPi * r * r + 2.0 * r * l * side;
-    case ShapeType::Mesh: noMeshInMedia();
+    case ShapeType::Mesh:
+    case ShapeType::Compound: noMeshInMedia();
   }
   return 0.0;
 }
@@ -500,7 +503,8 @@ double surfaceArea(const Shape& shape) {
     }
     case ShapeType::Cylinder: return 2.0 * kPi * r * r + 2.0 * kPi * r * l;
     case ShapeType::Capsule: return 4.0 * kPi * r * r + 2.0 * kPi * r * l;
-    case ShapeType::Mesh: noMeshInMedia();
+    case ShapeType::Mesh:
+    case ShapeType::Compound: noMeshInMedia();
   }
   return 0.0;
 }
@@ -516,7 +520,8 @@ double dragArea(const Shape& shape, const Vec3& d) {
       return axialCd(l / (2.0 * r)) * kPi * r * r * axial + crossCd(2.0 * r / std::max(l, 1e-300)) * 2.0 * r * l * side;
     case ShapeType::Capsule:
       return kSphereCd * kPi * r * r + crossCd(2.0 * r / std::max(l, 1e-300)) * 2.0 * r * l * side;
-    case ShapeType::Mesh: noMeshInMedia();
+    case ShapeType::Mesh:
+    case ShapeType::Compound: noMeshInMedia();
   }
   return 0.0;
 }
@@ -556,7 +561,8 @@ Vec3 pressureTorqueFactor(const Shape& shape) {
       const double t = 0.5 * crossCd(2.0 * r / std::max(l, 1e-300)) * r * std::pow(0.5 * l, 4);
       return Vec3(t, t, 0.0);
     }
-    case ShapeType::Mesh: noMeshInMedia();
+    case ShapeType::Mesh:
+    case ShapeType::Compound: noMeshInMedia();
   }
   return Vec3::Zero();
 }

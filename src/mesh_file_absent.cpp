@@ -1,5 +1,5 @@
-// The mesh reader of binaries built without the meshes module (src/modules.h): a scene
-// that names a mesh is refused, and none of the mesh code is linked.
+// The shapes of real parts in binaries built without the meshes module (src/modules.h):
+// a scene that names a mesh or a compound is refused, and none of their code is linked.
 #include "mesh_file.h"
 #include "scene.h"
 
@@ -9,6 +9,12 @@ std::shared_ptr<const MeshShape> readMeshShape(const std::string&, const std::st
                                                const std::string& field, std::string&) {
   throw SceneError(field +
                    ": meshes are not in this binary (it lacks the meshes module); build the FMU with "
+                   "rigidfmu build, which picks a binary with the modules a scene needs");
+}
+
+std::shared_ptr<const CompoundShape> makeCompound(const std::vector<PlacedShape>&, const std::string& field) {
+  throw SceneError(field +
+                   ": compounds are not in this binary (it lacks the meshes module); build the FMU with "
                    "rigidfmu build, which picks a binary with the modules a scene needs");
 }
 

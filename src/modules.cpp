@@ -14,7 +14,7 @@ unsigned modulesNeeded(const WorldModel& model) {
   if (colliding >= 2 || !model.surfaces.empty()) m |= kModuleCollisions | kModuleSurfaces;
   if (!model.joints.empty()) m |= kModuleJoints | kModuleCollisions | kModuleSurfaces;
   for (const BodyConstants& b : model.bodies)
-    if (b.shape.type == ShapeType::Mesh) m |= kModuleMeshes;
+    if (b.shape.type == ShapeType::Mesh || b.shape.type == ShapeType::Compound) m |= kModuleMeshes;
   return m;
 }
 

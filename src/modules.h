@@ -16,7 +16,7 @@ enum ModuleBits : unsigned {
   kModuleMedia = 1u << 1,       // medium: buoyancy, drag
   kModuleCollisions = 1u << 2,  // collision_detection (FCL), constraint_solver
   kModuleJoints = 1u << 3,      // joint_rows: the joints' rows in the constraint solver (with collisions)
-  kModuleMeshes = 1u << 4,      // mesh_file, solid_mass: bodies shaped by mesh files (issue 42)
+  kModuleMeshes = 1u << 4,      // mesh_file, compound, solid_mass: mesh and compound bodies (issue 42)
 };
 
 // The modules a world needs. Surfaces and collisions come together: a surface is a

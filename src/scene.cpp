@@ -59,6 +59,31 @@ Shape readMesh(const Object& o, const SceneFiles& files) {
   return s;
 }
 
+Shape readShape(const json& j, const std::string& path, const SceneFiles& files);
+
+// A compound's parts: each a primitive (placed by its centre) or a mesh (by its
+// file's origin), no compound, at a pose in the compound's frame.
+Shape readCompound(const Object& o, const SceneFiles& files) {
+  if (!o.has("parts") || !o.at("parts").is_array() || o.at("parts").empty())
+    fail(o.path("parts"), "must be an array of at least one part");
+  std::vector<PlacedShape> placed;
+  for (size_t k = 0; k < o.at("parts").size(); ++k) {
+    const Object part(o.at("parts")[k], o.path("parts") + "[" + std::to_string(k) + "]",
+                      {"shape", "position", "orientation"});
+    if (!part.has("shape")) fail(part.path("shape"), "is required");
+    PlacedShape p;
+    p.shape = readShape(part.at("shape"), part.path("shape"), files);
+    if (p.shape.type == ShapeType::Compound) fail(part.path("shape") + ".type", "a part cannot be a compound");
+    p.position = part.vec3("position", Vec3::Zero());
+    p.orientation = unitQuaternion(part, "orientation");
+    placed.push_back(p);
+  }
+  Shape s;
+  s.type = ShapeType::Compound;
+  s.compound = makeCompound(placed, o.path("parts"));
+  return s;
+}
+
 Shape readShape(const json& j, const std::string& path, const SceneFiles& files) {
   if (!j.is_object() || !j.contains("type")) fail(path + ".type", "is required");
   if (!j["type"].is_string()) fail(path + ".type", "must be a string");
@@ -85,8 +110,10 @@ Shape readShape(const json& j, const std::string& path, const SceneFiles& files)
     if (s.type == ShapeType::Capsule && s.length < 0.0) fail(o.path("length"), "must be >= 0, got " + num(s.length));
   } else if (type == "mesh") {
     s = readMesh(Object(j, path, {"type", "file", "scale"}), files);
+  } else if (type == "compound") {
+    s = readCompound(Object(j, path, {"type", "parts"}), files);
   } else {
-    fail(path + ".type", "must be one of sphere, box, cylinder, capsule, mesh, got \"" + type + "\"");
+    fail(path + ".type", "must be one of sphere, box, cylinder, capsule, mesh, compound, got \"" + type + "\"");
   }
   return s;
 }
@@ -421,9 +448,10 @@ Scene parseScene(const std::string& text, const SceneFiles& files) {
   readSurfaces(o, scene);
   m.media = readList<Medium>(o, "media", false, readMedium);
   for (size_t i = 0; i < m.bodies.size() && !m.media.empty(); ++i)
-    if (m.bodies[i].shape.type == ShapeType::Mesh)
+    if (m.bodies[i].shape.type == ShapeType::Mesh || m.bodies[i].shape.type == ShapeType::Compound)
       fail("bodies[" + std::to_string(i) + "].shape",
-           "a mesh body in a scene with media: not yet (media take spheres, boxes, cylinders and capsules)");
+           std::string("a ") + shapeTypeName(m.bodies[i].shape.type) +
+               " body in a scene with media: not yet (media take spheres, boxes, cylinders and capsules)");
   readJoints(o, scene);
   checkOneNameSpace(m);
   scene.canonicalJson = j.dump();

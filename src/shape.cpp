@@ -1,5 +1,7 @@
 #include "shape.h"
 
+#include "compound_shape.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -18,6 +20,7 @@ const char* shapeTypeName(ShapeType type) {
     case ShapeType::Cylinder: return "cylinder";
     case ShapeType::Capsule: return "capsule";
     case ShapeType::Mesh: return "mesh";
+    case ShapeType::Compound: return "compound";
   }
   return "?";
 }
@@ -30,6 +33,7 @@ double shapeVolume(const Shape& s) {
     case ShapeType::Cylinder: return kPi * r * r * s.length;
     case ShapeType::Capsule: return kPi * r * r * s.length + 4.0 / 3.0 * kPi * r * r * r;
     case ShapeType::Mesh: return s.mesh->volume;
+    case ShapeType::Compound: return s.compound->volume;
   }
   return 0.0;
 }
@@ -64,13 +68,15 @@ Vec3 solidPrincipalInertia(const Shape& s, double m) {
       const double Izz = 0.5 * mCyl * r * r + 2.0 * 0.4 * mCap * r * r;
       return Vec3(Ixx, Ixx, Izz);
     }
-    case ShapeType::Mesh: return Eigen::SelfAdjointEigenSolver<Mat3>(solidInertia(s, m)).eigenvalues();
+    case ShapeType::Mesh:
+    case ShapeType::Compound: return Eigen::SelfAdjointEigenSolver<Mat3>(solidInertia(s, m)).eigenvalues();
   }
   return Vec3::Zero();
 }
 
 Mat3 solidInertia(const Shape& s, double m) {
   if (s.type == ShapeType::Mesh) return s.mesh->inertiaPerDensity * (m / s.mesh->volume);
+  if (s.type == ShapeType::Compound) return s.compound->inertiaPerDensity * (m / s.compound->volume);
   return solidPrincipalInertia(s, m).asDiagonal();
 }
 
@@ -81,6 +87,7 @@ double halfThickness(const Shape& s) {
     case ShapeType::Box: return 0.5 * s.size.minCoeff();
     case ShapeType::Cylinder: return std::min(s.radius, 0.5 * s.length);
     case ShapeType::Mesh: return s.mesh->halfThickness;
+    case ShapeType::Compound: return s.compound->halfThickness;
   }
   return 0.0;
 }
@@ -92,6 +99,7 @@ double boundingRadius(const Shape& s) {
     case ShapeType::Box: return 0.5 * s.size.norm();
     case ShapeType::Cylinder: return std::hypot(s.radius, 0.5 * s.length);
     case ShapeType::Mesh: return s.mesh->boundingRadius;
+    case ShapeType::Compound: return s.compound->boundingRadius;
   }
   return 0.0;
 }

@@ -8,14 +8,17 @@
 
 namespace rigid {
 
-enum class ShapeType { Sphere, Box, Cylinder, Capsule, Mesh };
+enum class ShapeType { Sphere, Box, Cylinder, Capsule, Mesh, Compound };
+
+struct CompoundShape;  // compound_shape.h
 
 struct Shape {
   ShapeType type = ShapeType::Sphere;
-  double radius = 0.0;                    // m: sphere, cylinder, capsule
-  Vec3 size = Vec3::Zero();               // m: box, full edge lengths (lx, ly, lz)
-  double length = 0.0;                    // m: cylinder length; capsule's cylinder part. Axis = body z.
-  std::shared_ptr<const MeshShape> mesh;  // mesh: the file's solid and hull, body frame
+  double radius = 0.0;                            // m: sphere, cylinder, capsule
+  Vec3 size = Vec3::Zero();                       // m: box, full edge lengths (lx, ly, lz)
+  double length = 0.0;                            // m: cylinder length; capsule's cylinder part. Axis = body z.
+  std::shared_ptr<const MeshShape> mesh;          // mesh: the file's solid and hull, body frame
+  std::shared_ptr<const CompoundShape> compound;  // compound: its parts, body frame
 };
 
 const char* shapeTypeName(ShapeType type);

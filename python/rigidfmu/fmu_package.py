@@ -70,7 +70,8 @@ def describe_staged(scene: pathlib.Path, resources: pathlib.Path, native: native
             message = message.replace(str(resources) + "/", str(scene.parent) + "/")
             raise SceneError(message or f"{scene}: refused (exit status {run.returncode})")
         folder = pathlib.Path(out)
-        warnings = tuple((folder / "warnings").read_text().splitlines())
+        notes = folder / "warnings"  # (a describe tool of before issue 42 writes none)
+        warnings = tuple(notes.read_text().splitlines()) if notes.exists() else ()
         for warning in warnings:
             print(f"rigidfmu: warning: {warning}", file=sys.stderr)
         return Description((folder / "modelDescription.xml").read_bytes(),

@@ -229,3 +229,48 @@ def test_a_concave_mesh_builds_with_a_warning_that_its_hull_collides(tmp_path):
                  {"ell.stl": stl(ell)})
     assert run_.returncode == 0, run_.stderr
     assert "bodies[0].shape.file: ell.stl: its convex hull, which collides, holds 1.16667 times" in run_.stderr
+
+
+def gamma(bar):
+    """A post 0.1 x 0.1 x 0.3 m standing on the floor with a bar of `bar` x 0.1 x 0.1 m on
+    its top, reaching out along +x from the post's far side: the bar a mesh file (its
+    corner at the file's origin, placed there), the post a primitive box. Its centre of
+    mass by the parts' volumes, in the compound's frame (the post's foot's centre)."""
+    post, beam = 0.1 * 0.1 * 0.3, bar * 0.1 * 0.1
+    com = (post * np.array([0.0, 0.0, 0.15]) + beam * np.array([bar / 2 - 0.05, 0.0, 0.35])) / (post + beam)
+    shape = {"type": "compound", "parts": [
+        {"shape": {"type": "box", "size": [0.1, 0.1, 0.3]}, "position": [0.0, 0.0, 0.15]},
+        {"shape": {"type": "mesh", "file": "bar.stl", "scale": [bar, 0.1, 0.1]}, "position": [-0.05, -0.05, 0.3]}]}
+    corner = trimesh.creation.box(extents=(1.0, 1.0, 1.0))
+    corner.apply_translation((0.5, 0.5, 0.5))
+    return shape, com, {"bar.stl": stl(corner)}
+
+
+@pytest.mark.parametrize("bar", [0.25, 0.35])
+def test_a_compound_rests_on_the_side_its_centre_of_mass_allows(slave, bar):
+    """The post's foot holds the compound while its centre of mass is above it: a bar of
+    0.25 m puts it 0.0341 m out, inside the foot's 0.05 m, and it stands (within 1 mm,
+    1 deg); a bar of 0.35 m puts it 0.0673 m out, and it falls over towards +x (turned
+    beyond 45 deg about -y, its centre of mass moved on along +x)."""
+    shape, com, files = gamma(bar)
+    body = scenes.body("gamma", shape=shape, position=list(com), restitution=0.0)
+    v = run(slave, scenes.scene(f"Gamma{round(bar * 100)}", [body], surfaces=[scenes.floor()]), files, 3.0,
+            names_of("gamma"))
+    p = position(v, "gamma")
+    turned = 2.0 * math.atan2(v["gamma.orientation[3]"], v["gamma.orientation[1]"])
+    if com[0] < 0.05:
+        assert p == pytest.approx(com, abs=1e-3)
+        assert abs(math.degrees(turned)) < 1.0
+    else:
+        assert math.degrees(turned) > 45.0
+        assert p[0] > com[0] + 0.05
+
+
+def test_the_mass_of_a_compound_is_its_parts_volumes_times_the_density(fmu_of):
+    """The post (0.003 m^3) and the 0.25 m bar (0.0025 m^3) at 1000 kg/m^3: 5.5 kg."""
+    shape, _, files = gamma(0.25)
+    body = scenes.body("gamma", shape=shape, density=1000.0)
+    del body["mass"]
+    from fmpy import read_model_description
+    md = read_model_description(str(fmu_of(scenes.scene("GammaMass", [body]), files=files)))
+    assert float(next(v for v in md.modelVariables if v.name == "gamma.mass").start) == pytest.approx(5.5, rel=1e-7)

@@ -89,7 +89,8 @@ Reference rayIntegral(const Shape& s, const Vec3& X, const Mat3& R, const Vec3& 
         case ShapeType::Cylinder: half = 0.5 * s.length; break;
         case ShapeType::Capsule: half = 0.5 * s.length + cap; break;
         case ShapeType::Box:
-        case ShapeType::Mesh: break;  // (media take no meshes)
+        case ShapeType::Mesh:
+        case ShapeType::Compound: break;  // (media take neither)
       }
       for (int j = 0; j < n; ++j) {
         const double theta = (j + 0.5) * dtheta;
@@ -109,7 +110,8 @@ double largestDimension(const Shape& s) {
     case ShapeType::Box: return s.size.maxCoeff();
     case ShapeType::Cylinder: return std::max(2.0 * s.radius, s.length);
     case ShapeType::Capsule: return s.length + 2.0 * s.radius;
-    case ShapeType::Mesh: break;  // (media take no meshes)
+    case ShapeType::Mesh:
+    case ShapeType::Compound: break;  // (media take neither)
   }
   return 0.0;
 }

@@ -247,7 +247,7 @@ TEST(Scene, DuplicateBodyName) {
 
 TEST(Scene, ShapeTypeUnknown) {
   EXPECT_SCENE_ERROR(sceneWith("", "", R"({"type": "cone", "radius": 0.1})"),
-                     "bodies[0].shape.type: must be one of sphere, box, cylinder, capsule, mesh, got \"cone\"");
+                     "bodies[0].shape.type: must be one of sphere, box, cylinder, capsule, mesh, compound, got \"cone\"");
 }
 
 TEST(Scene, SphereRadiusNotPositive) {

@@ -63,7 +63,7 @@ def cmd_simulate(args) -> int:
         target = build_scene(target, out_dir / f"{target.stem}.fmu", win64=not args.no_win64)
     files = simulate.simulate(target, out_dir, args.stop_time, args.output_interval, plot=args.plot)
     if args.replay:
-        files.append(replay.write_replay(files[0], simulate.scene_of(target), out_dir / f"{target.stem}.html"))
+        files.append(replay.write_fmu_replay(files[0], target, out_dir / f"{target.stem}.html"))
     for f in files:
         print(f)
     return 0

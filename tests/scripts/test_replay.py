@@ -2,7 +2,10 @@
 replay page that replay.sh writes, self-contained, and that headless chromium opens with no error,
 shows every body in its palette colour and moves the bodies with the time slider. A run
 of scripts/scenes/pusher.json keeps its driven pusher and driven surface lift: their
-poses in the CSV, out of the energy, in the replay as bodies of their own colour."""
+poses in the CSV, out of the energy, in the replay as bodies of their own colour. Mesh
+bodies (STL files made with trimesh) reach the page as their triangles in the body
+frame, moved by the solid's centroid (closed forms of a box and a tetrahedron), and a
+compound's parts are moved by the compound's."""
 import colorsys
 import csv
 import json
@@ -15,8 +18,10 @@ import sys
 
 import numpy as np
 import pytest
+import trimesh
 from PIL import Image
 
+from rigidfmu.errors import ReplayError
 from rigidfmu.plots import energy_note
 from rigidfmu.replay import DRIVEN_COLOUR, colour_of, read_result, write_replay
 from rigidfmu.scenes import body, scene
@@ -216,3 +221,132 @@ def test_page_moves_the_driven_bodies_with_their_recorded_pose(pusher_run, tmp_p
     (n0, x0, y0), (n1, x1, y1) = (body_pixels(p, DRIVEN_COLOUR, saturation=0.15) for p in report["screenshots"])
     assert n0 >= 40 and n1 >= 40, f"driven bodies: {n0} and {n1} pixels"
     assert np.hypot(x1 - x0, y1 - y0) > 5
+
+
+# ---- mesh and compound bodies ----------------------------------------------------------
+
+# A box from (0, 0, 0) to (a, b, c) in the file (exact in binary STL's float32), scaled
+# per axis to a 0.2 m cube: its centroid s * (a, b, c) / 2, its corners then at ±0.1 m.
+BOX = (0.5, 0.25, 1.0)
+BOX_SCALE = [0.4, 0.8, 0.2]
+HALF = 0.1
+TETRAHEDRON = ([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+               [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])  # counter-clockwise seen from outside
+
+
+def box_stl() -> bytes:
+    mesh = trimesh.creation.box(extents=BOX)
+    mesh.apply_translation(np.array(BOX) / 2)  # its corner at the file's origin
+    return mesh.export(file_type="stl")
+
+
+def tetrahedron_stl() -> bytes:
+    return trimesh.Trimesh(*TETRAHEDRON, process=False).export(file_type="stl")
+
+
+def corners(half) -> set:
+    return {(x, y, z) for x in (-half[0], half[0]) for y in (-half[1], half[1]) for z in (-half[2], half[2])}
+
+
+def signed_volume(shape) -> float:
+    v = np.array(shape["vertices"]).reshape(-1, 3)[np.array(shape["triangles"]).reshape(-1, 3)]
+    return float(np.einsum("ij,ij->i", v[:, 0], np.cross(v[:, 1], v[:, 2])).sum() / 6.0)
+
+
+def still_replay(tmp_path, s, files) -> dict:
+    """The page's data of scene `s` written with its mesh `files` in tmp_path, from a
+    run of two frames whose CSV holds no pose (the bodies stay at their start)."""
+    for name, data in files.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_bytes(data)
+    (tmp_path / "scene.json").write_text(json.dumps(s))
+    (tmp_path / "run.csv").write_text("time\n0\n0.01\n")
+    html = write_replay(tmp_path / "run.csv", tmp_path / "scene.json", tmp_path / "run.html")
+    return replay_data(html.read_text())
+
+
+def test_a_mesh_box_reaches_the_page_scaled_and_moved_to_its_centroid(tmp_path):
+    shape = {"type": "mesh", "file": "parts/box.stl", "scale": BOX_SCALE}
+    data = still_replay(tmp_path, scene("MeshBox", [body("part", shape)]), {"parts/box.stl": box_stl()})
+    drawn = data["bodies"][0]["shape"]
+    assert (drawn["type"], drawn["file"], drawn["scale"]) == ("mesh", "parts/box.stl", BOX_SCALE)
+    assert len(drawn["vertices"]) == 3 * 8 and len(drawn["triangles"]) == 3 * 12
+    assert {tuple(np.round(v, 9) + 0.0) for v in np.reshape(drawn["vertices"], (-1, 3))} == corners([HALF] * 3)
+    assert signed_volume(drawn) == pytest.approx((2 * HALF) ** 3, rel=1e-9)  # wound outward, as the file
+
+
+def test_a_tetrahedron_is_moved_by_its_centroid_with_one_scale_factor(tmp_path):
+    shape = {"type": "mesh", "file": "tetra.stl", "scale": 0.5}
+    data = still_replay(tmp_path, scene("MeshTetra", [body("tetra", shape)]), {"tetra.stl": tetrahedron_stl()})
+    drawn = data["bodies"][0]["shape"]
+    assert len(drawn["vertices"]) == 3 * 4 and len(drawn["triangles"]) == 3 * 4
+    # the corners' mean, (1, 1, 1) / 8 after the scale of 0.5
+    expected = 0.5 * np.array(TETRAHEDRON[0]) - 0.125
+    assert np.allclose(sorted(np.reshape(drawn["vertices"], (-1, 3)).tolist()), sorted(expected.tolist()),
+                       rtol=0, atol=1e-6)
+
+
+def test_a_compounds_parts_are_moved_by_the_compounds_centroid(tmp_path):
+    """A 0.2 m primitive cube and a 0.2 m mesh cube 1 m apart along x, turned: equal
+    volumes, so the centre of mass is half way and each part 0.5 m from it."""
+    shape = {"type": "compound", "parts": [
+        {"shape": {"type": "box", "size": [0.2, 0.2, 0.2]}, "position": [0, 1, 2]},
+        {"shape": {"type": "mesh", "file": "box.stl", "scale": BOX_SCALE}, "position": [1, 1, 2],
+         "orientation": [0.0, 0.0, 0.0, 1.0]}]}
+    data = still_replay(tmp_path, scene("Compound", [body("pair", shape)]), {"box.stl": box_stl()})
+    drawn = data["bodies"][0]["shape"]
+    assert [p["position"] for p in drawn["parts"]] == [[-0.5, 0.0, 0.0], [0.5, 0.0, 0.0]]
+    assert drawn["parts"][0]["shape"] == {"type": "box", "size": [0.2, 0.2, 0.2]}
+    assert drawn["parts"][1]["orientation"] == [0.0, 0.0, 0.0, 1.0]
+    mesh = drawn["parts"][1]["shape"]
+    assert {tuple(np.round(v, 9) + 0.0) for v in np.reshape(mesh["vertices"], (-1, 3))} == corners([HALF] * 3)
+
+
+def test_a_mesh_scene_given_as_a_dict_needs_its_folder(tmp_path):
+    (tmp_path / "run.csv").write_text("time\n0\n")
+    s = scene("MeshBox", [body("part", {"type": "mesh", "file": "box.stl"})])
+    with pytest.raises(ReplayError, match=r"bodies\[0\]\.shape: a mesh needs the scene's folder"):
+        write_replay(tmp_path / "run.csv", s, tmp_path / "run.html")
+
+
+@pytest.fixture(scope="module")
+def mesh_run(fmu_of, tmp_path_factory):
+    """A mesh cube tossed with spin over a floor, simulated by `rigidfmu simulate FMU
+    --replay`: the page's meshes come from the FMU's resources."""
+    out = tmp_path_factory.mktemp("mesh")
+    s = scene("ReplayMesh", [body("cube", {"type": "mesh", "file": "parts/box.stl", "scale": BOX_SCALE},
+                                  position=[0, 0, 0.5], velocity=[2, 0, 2], angularVelocity=[0, 5, 0])])
+    s["surfaces"] = [{"name": "floor", "min": [-2, -1, -0.2], "max": [3, 1, 0]}]
+    fmu = fmu_of(s, files={"parts/box.stl": box_stl()})
+    subprocess.run([sys.executable, "-m", "rigidfmu", "simulate", str(fmu), "--replay", "--stop-time", "0.5",
+                    "--out", str(out)], check=True, capture_output=True, env=ENV)
+    return {"dir": out, "html": out / f"{fmu.stem}.html"}
+
+
+def test_a_simulated_mesh_body_replays_with_its_triangles(mesh_run):
+    data = replay_data(mesh_run["html"].read_text())
+    cube = data["bodies"][0]
+    assert len(cube["shape"]["vertices"]) == 3 * 8 and len(cube["shape"]["triangles"]) == 3 * 12
+    assert len(cube["position"]) == 3 * len(data["time"]) > 3
+
+
+@BROWSER
+def test_page_draws_the_mesh_body_and_moves_it(mesh_run):
+    report = snapshots(mesh_run["html"], mesh_run["dir"] / "shots")
+    assert report["errors"] == []
+    (n0, x0, y0), (n1, x1, y1) = (body_pixels(p, colour_of(0)) for p in report["screenshots"])
+    assert n0 >= 40 and n1 >= 40, f"the mesh cube: {n0} and {n1} pixels"
+    assert np.hypot(x1 - x0, y1 - y0) > 5
+
+
+@BROWSER
+def test_page_draws_a_compound_without_error(tmp_path):
+    shape = {"type": "compound", "parts": [
+        {"shape": {"type": "sphere", "radius": 0.2}, "position": [0, 0, 0]},
+        {"shape": {"type": "mesh", "file": "box.stl", "scale": BOX_SCALE}, "position": [0.6, 0, 0],
+         "orientation": [0.9238795, 0.0, 0.0, 0.3826834]}]}
+    still_replay(tmp_path, scene("Compound", [body("pair", shape, position=[0, 0, 0.3])]), {"box.stl": box_stl()})
+    report = snapshots(tmp_path / "run.html", tmp_path / "shots")
+    assert report["errors"] == []
+    n, _, _ = body_pixels(report["screenshots"][0], colour_of(0))
+    assert n >= 40, f"the compound: {n} pixels"

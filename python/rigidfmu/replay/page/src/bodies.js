@@ -1,6 +1,8 @@
 // Meshes of the bodies, one per shape of the scene format (shared/INTERFACE.md):
 // sphere radius; box full edge lengths; cylinder and capsule of radius r with their axis
-// along the body's z (src/shape.h), the capsule's length being its cylinder part.
+// along the body's z (src/shape.h), the capsule's length being its cylinder part; a mesh
+// file's own triangles, which rigidfmu.replay puts in the shape already in the body
+// frame (replay/shapes.py), and a compound's parts, each placed in the body frame.
 // Each body also gets dark lines fixed in its frame, so that a spinning sphere or a
 // cylinder turning about its axis is seen to turn.
 import * as THREE from 'three';
@@ -48,6 +50,30 @@ function segments(pairs, material) {
   return new THREE.LineSegments(geometry, material);
 }
 
+// A mesh file's triangles as they are (not their hull, which is what collides), shaded
+// flat: CAD parts are faceted, and the vertices are shared across sharp edges, where
+// averaged normals would round the shading. The lines are its edges sharper than 30°.
+function meshParts(shape, material, lines) {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.Float32BufferAttribute(shape.vertices, 3));
+  geometry.setIndex(shape.triangles);
+  const faceted = material.clone();
+  faceted.flatShading = true;
+  return [new THREE.Mesh(geometry, faceted), new THREE.LineSegments(new THREE.EdgesGeometry(geometry, 30), lines)];
+}
+
+// A compound's parts, each a group at its position and orientation in the body frame.
+function compoundParts(shape, material, lines) {
+  return shape.parts.map(part => {
+    const group = new THREE.Group();
+    for (const object of parts(part.shape, material, lines)) group.add(object);
+    group.position.set(...(part.position ?? [0, 0, 0]));
+    const [w, x, y, z] = part.orientation ?? [1, 0, 0, 0];
+    group.quaternion.set(x, y, z, w).normalize();
+    return group;
+  });
+}
+
 // The solid and the marker lines of one shape, in the body frame.
 function parts(shape, material, lines) {
   // lines drawn a hair outside the surface so that the solid does not hide them
@@ -77,6 +103,10 @@ function parts(shape, material, lines) {
       return [new THREE.Mesh(geometry, material),
               loop(stadium(r * out, h), lines), loop(circle(r * out, 'xy'), lines)];
     }
+    case 'mesh':
+      return meshParts(shape, material, lines);
+    case 'compound':
+      return compoundParts(shape, material, lines);
     default:
       throw new Error(`unknown shape type ${shape.type}`);
   }
@@ -100,6 +130,17 @@ export function boundingRadius(shape) {
     case 'box': return 0.5 * Math.hypot(...shape.size);
     case 'cylinder': return Math.hypot(shape.radius, shape.length / 2);
     case 'capsule': return shape.radius + shape.length / 2;
+    case 'mesh': {
+      let r2 = 0;
+      for (let i = 0; i < shape.vertices.length; i += 3) {
+        const [x, y, z] = shape.vertices.slice(i, i + 3);
+        r2 = Math.max(r2, x * x + y * y + z * z);
+      }
+      return Math.sqrt(r2);
+    }
+    // a part turned about its own centre stays inside its sphere
+    case 'compound':
+      return Math.max(...shape.parts.map(p => Math.hypot(...(p.position ?? [0, 0, 0])) + boundingRadius(p.shape)));
     default: throw new Error(`unknown shape type ${shape.type}`);
   }
 }

@@ -287,15 +287,18 @@ def test_a_tetrahedron_is_moved_by_its_centroid_with_one_scale_factor(tmp_path):
 
 
 def test_a_compounds_parts_are_moved_by_the_compounds_centroid(tmp_path):
-    """A 0.2 m primitive cube and a 0.2 m mesh cube 1 m apart along x, turned: equal
-    volumes, so the centre of mass is half way and each part 0.5 m from it."""
+    """A 0.2 m primitive cube centred at (0, 1, 2) and a 0.2 m mesh cube whose file puts
+    its corner at its origin, that origin placed at (1, 1, 2) and turned half a turn
+    about z: the mesh's centre of mass at (1, 1, 2) + (-0.1, -0.1, 0.1); equal volumes,
+    so the compound's centre half way, each part +-(0.45, -0.05, 0.05) from it."""
     shape = {"type": "compound", "parts": [
         {"shape": {"type": "box", "size": [0.2, 0.2, 0.2]}, "position": [0, 1, 2]},
         {"shape": {"type": "mesh", "file": "box.stl", "scale": BOX_SCALE}, "position": [1, 1, 2],
          "orientation": [0.0, 0.0, 0.0, 1.0]}]}
     data = still_replay(tmp_path, scene("Compound", [body("pair", shape)]), {"box.stl": box_stl()})
     drawn = data["bodies"][0]["shape"]
-    assert [p["position"] for p in drawn["parts"]] == [[-0.5, 0.0, 0.0], [0.5, 0.0, 0.0]]
+    assert np.allclose([p["position"] for p in drawn["parts"]], [[-0.45, 0.05, -0.05], [0.45, -0.05, 0.05]],
+                       rtol=0, atol=1e-12)
     assert drawn["parts"][0]["shape"] == {"type": "box", "size": [0.2, 0.2, 0.2]}
     assert drawn["parts"][1]["orientation"] == [0.0, 0.0, 0.0, 1.0]
     mesh = drawn["parts"][1]["shape"]

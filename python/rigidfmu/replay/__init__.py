@@ -95,7 +95,7 @@ def flat(result: dict, columns: list, decimals: int):
 def body_track(result: dict, body: dict, index: int, folder: pathlib.Path | None = None) -> dict:
     """The page's data of the body at `index`; `folder`: the scene's, for mesh files."""
     name = body["name"]
-    shape, _ = replay_shape(body["shape"], folder, f"bodies[{index}].shape")
+    shape, _, _ = replay_shape(body["shape"], folder, f"bodies[{index}].shape")
     track = {"name": name, "shape": shape, "motion": body.get("motion", "free"),
              "colour": body_colour(body, index)}
     for field, n, start in (("position", 3, [0.0, 0.0, 0.0]), ("orientation", 4, [1.0, 0.0, 0.0, 0.0])):

@@ -9,10 +9,11 @@ mass (src/mesh_file.cpp): file point x lies at scale * x - c, c the volume centr
 the scaled solid. The file is read as `rigidfmu build` reads it (mesh_conversion: trimesh,
 exactly equal vertices merged), so that the page draws the triangles the core was given.
 
-A compound's parts (primitives or meshes, each in its own centre-of-mass frame, placed
-at "position" and turned by "orientation" in the compound's frame) keep their shapes;
-their positions are moved to the body frame, the compound's frame moved to the centre
-of mass of the parts at one density (their volumes' weighted mean).
+A compound's parts (a primitive placed by its centre, a mesh by its file's origin, at
+"position" and turned by "orientation" in the compound's frame) keep their shapes, drawn
+about their own centres of mass; their positions become those centres in the body
+frame, the compound's frame moved to the centre of mass of the parts at one density
+(their volumes' weighted mean), as the core places them (src/compound.cpp).
 """
 import math
 import pathlib
@@ -55,9 +56,10 @@ def scale_of(shape: dict, field: str) -> np.ndarray:
     return np.broadcast_to(scale, (3,))
 
 
-def mesh_shape(shape: dict, folder: pathlib.Path | None, field: str) -> tuple[dict, float]:
-    """The mesh shape with its vertices in the body frame and its triangles, and its
-    volume (m^3). The path is checked by the rule `rigidfmu build` checks."""
+def mesh_shape(shape: dict, folder: pathlib.Path | None, field: str) -> tuple[dict, float, np.ndarray]:
+    """The mesh shape with its vertices in the body frame and its triangles, its volume
+    (m^3), and its centre of mass in the scaled file's frame. The path is checked by the
+    rule `rigidfmu build` checks."""
     from rigidfmu import mesh_conversion, meshes  # numpy, scipy and trimesh: only for a scene with meshes
 
     if folder is None:
@@ -73,7 +75,7 @@ def mesh_shape(shape: dict, folder: pathlib.Path | None, field: str) -> tuple[di
                           "(the FMU refuses it too)")
     drawn = {**shape, "vertices": np.round(vertices - centre, 6).ravel().tolist(),
              "triangles": triangles.ravel().tolist()}
-    return drawn, volume
+    return drawn, volume, centre
 
 
 def compound_shape(shape: dict, folder: pathlib.Path | None, field: str) -> tuple[dict, float]:
@@ -81,28 +83,40 @@ def compound_shape(shape: dict, folder: pathlib.Path | None, field: str) -> tupl
     and its volume (m^3)."""
     placed = []
     for k, part in enumerate(shape.get("parts", [])):
-        drawn, volume = replay_shape(part["shape"], folder, f"{field}.parts[{k}].shape")
+        drawn, volume, centre = replay_shape(part["shape"], folder, f"{field}.parts[{k}].shape")
         if volume is None:
             raise ReplayError(f"{field}.parts[{k}].shape: no volume for a {part['shape'].get('type')} shape")
-        placed.append((part, drawn, volume, np.asarray(part.get("position", [0.0, 0.0, 0.0]), dtype=float)))
+        turn = rotation(part.get("orientation", [1.0, 0.0, 0.0, 0.0]))
+        at = np.asarray(part.get("position", [0.0, 0.0, 0.0]), dtype=float) + turn @ centre
+        placed.append((part, drawn, volume, at))
     total = sum(volume for _, _, volume, _ in placed)
     if not placed or not total > 0.0:
         raise ReplayError(f"{field}.parts: a compound needs parts of some volume")
     centre = sum(volume * position for _, _, volume, position in placed) / total
     parts = [{**part, "shape": drawn, "position": (position - centre).tolist()}
              for part, drawn, _, position in placed]
-    return {**shape, "parts": parts}, total
+    return {**shape, "parts": parts}, total, np.zeros(3)
 
 
-def replay_shape(shape: dict, folder: pathlib.Path | None, field: str) -> tuple[dict, float | None]:
-    """The shape as the page draws it, and its volume (m^3; None for a type the replay
-    does not know, which the page names). `folder`: the scene's, where its mesh files are."""
+def rotation(q) -> np.ndarray:
+    """The rotation matrix of the quaternion (w, x, y, z), normalised."""
+    w, x, y, z = np.asarray(q, dtype=float) / np.linalg.norm(q)
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
+def replay_shape(shape: dict, folder: pathlib.Path | None, field: str) -> tuple[dict, float | None, np.ndarray]:
+    """The shape as the page draws it (about its centre of mass), its volume (m^3; None
+    for a type the replay does not know, which the page names), and its centre of mass
+    from the point the scene places it by (a mesh's file origin; else none).
+    `folder`: the scene's, where its mesh files are."""
     kind = shape.get("type")
     if kind == "mesh":
         return mesh_shape(shape, folder, field)
     if kind == "compound":
         return compound_shape(shape, folder, field)
-    return shape, primitive_volume(shape)
+    return shape, primitive_volume(shape), np.zeros(3)
 
 
 def primitive_volume(shape: dict) -> float | None:

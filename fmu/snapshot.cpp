@@ -294,7 +294,7 @@ static_assert(fieldCount<rigid::BodyConstants>() == 16,
 static_assert(fieldCount<rigid::BodyStart>() == 4,
               "a field was added to rigid::BodyStart: visit it in visitParameters (fmu/snapshot.cpp), then update "
               "this count");
-static_assert(fieldCount<rigid::Surface>() == 14,
+static_assert(fieldCount<rigid::Surface>() == 15,
               "a field was added to rigid::Surface: if a parameter sets it, visit it in visitParameters "
               "(fmu/snapshot.cpp); then update this count");
 static_assert(fieldCount<rigid::Medium>() == 6,

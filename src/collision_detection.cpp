@@ -58,6 +58,9 @@ struct Geo {
   double halfLength = 0.0;           // m, cylinder, capsule: half the length along shape z
   Mat3 R = Mat3::Identity();         // shape frame -> world
   Vec3 p = Vec3::Zero();             // m, centre, world frame
+  // A mesh surface's triangle (a prism behind it): its front normal, along which a body
+  // is pushed out; zero for every other shape.
+  Vec3 front = Vec3::Zero();
   // A compound's part: its pose in the body frame, which the body's pose carries.
   bool part = false;
   Mat3 partR = Mat3::Identity();
@@ -646,7 +649,7 @@ struct CollisionDetector::Impl {
   // body pairs that a joint joins without "collide": their contacts are not detected
   std::vector<std::pair<int, int>> jointPairs;                  // (lower, higher) body index, sorted
   std::vector<Geo> geo;                                         // per slot
-  std::vector<Vec3> surfaceHalfAabb;                            // per surface: half extents of its world AABB
+  std::vector<Vec3> surfaceHalfAabb;                            // per surface slot: half extents of its world AABB
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;  // per slot
   // per slot: its FCL object has this step's pose. Most pairs of a pile end in the
   // separating-axis test, so FCL's objects are placed only when a pair reaches FCL.
@@ -718,6 +721,18 @@ struct CollisionDetector::Impl {
   // Any other pair, by fcl::collide: the face patch along its normal, else its points;
   // false when FCL finds no overlap.
   bool appendFclContacts(const Pair& pr, double margin, const Contact& proto, std::vector<Contact>& out);
+  // A body and a mesh surface's triangle (B): pushed out along its front, or at its edge.
+  void appendTriangleContacts(const Pair& pr, double margin, double speculative, const Contact& proto,
+                              std::vector<Contact>& out);
+  // The contacts from `begin` on, of one body with one mesh surface's triangles: those
+  // along one normal (coplanar triangles, a flat floor's seams) become one patch of at
+  // most kMaxPatch points, as one face gives, so that a body resting across a seam is
+  // held as on one face.
+  void mergeCoplanar(std::vector<Contact>& out, size_t begin);
+  std::vector<Contact> meshContacts;  // scratch of mergeCoplanar
+  std::vector<Vec3> meshPoints;       // scratch of mergeCoplanar
+  std::vector<double> meshGaps;       // scratch of mergeCoplanar
+  std::vector<size_t> meshMembers;    // scratch of mergeCoplanar
   // A pair that does not overlap: its contacts when closer than the margin.
   void appendWithinMargin(const Pair& pr, double margin, const Contact& proto, std::vector<Contact>& out);
 };
@@ -761,15 +776,29 @@ CollisionDetector::CollisionDetector(const WorldModel& model, const std::vector<
   std::sort(d.jointPairs.begin(), d.jointPairs.end());
   for (size_t j = 0; j < model.surfaces.size(); ++j) {
     const Surface& s = model.surfaces[j];
+    auto addSlot = [&](const Geo& g) {
+      d.slotIndex.push_back(static_cast<int>(j));
+      d.immovable.push_back(1);
+      d.geo.push_back(g);
+      d.surfaceHalfAabb.push_back(aabbHalfExtent(g));
+    };
+    if (s.mesh) {  // a slot per triangle
+      for (size_t k = 0; k < s.mesh->prisms.size(); ++k) {
+        Geo g;
+        g.type = ShapeType::Mesh;
+        g.hull = &s.mesh->prisms[k];
+        g.p = s.mesh->centres[k];
+        g.front = s.mesh->fronts[k];
+        addSlot(g);
+      }
+      continue;
+    }
     Geo g;
     g.type = ShapeType::Box;
     g.half = s.halfExtent;
     g.R = s.R_WS;
     g.p = s.centre;
-    d.slotIndex.push_back(static_cast<int>(j));
-    d.immovable.push_back(1);
-    d.geo.push_back(g);
-    d.surfaceHalfAabb.push_back(aabbHalfExtent(g));
+    addSlot(g);
   }
   for (size_t slot = 0; slot < d.geo.size(); ++slot) {
     const Geo& g = d.geo[slot];
@@ -850,7 +879,7 @@ void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, s
   d.hi.resize(nActive);
   for (int k = 0; k < nActive; ++k) {
     const int slot = d.active[k];
-    const Vec3 half = d.isBody(slot) ? d.pose(slot, Y) : d.surfaceHalfAabb[d.slotIndex[slot]];
+    const Vec3 half = d.isBody(slot) ? d.pose(slot, Y) : d.surfaceHalfAabb[slot - d.nBodySlots];
     d.lo[k] = d.geo[slot].p - half - grow;
     d.hi[k] = d.geo[slot].p + half + grow;
   }
@@ -861,7 +890,20 @@ void CollisionDetector::detect(const std::vector<BodyState>& Y, double margin, s
   if (sleepers) d.pairWithSleepers(*sleepers, Y, grow);
   d.sortPairs();
   const auto broad = profile ? std::chrono::steady_clock::now() : start;
-  for (const Impl::Pair& p : d.pairs) d.narrowphase(p, margin, speculative, out);
+  // A body's contacts with one mesh surface are merged once all its triangles are done.
+  size_t meshBegin = 0;
+  std::pair<int, int> mesh{-1, -1};  // (body, surface) of the contacts from meshBegin on
+  for (const Impl::Pair& p : d.pairs) {
+    const std::pair<int, int> on =
+        d.geo[p.slotB].front != Vec3::Zero() ? std::make_pair(p.a, p.surface) : std::make_pair(-1, -1);
+    if (on != mesh) {
+      if (mesh.first >= 0) d.mergeCoplanar(out, meshBegin);
+      mesh = on;
+      meshBegin = out.size();
+    }
+    d.narrowphase(p, margin, speculative, out);
+  }
+  if (mesh.first >= 0) d.mergeCoplanar(out, meshBegin);
   if (profile) {
     profile->broadphase += std::chrono::duration<double, std::nano>(broad - start).count();
     profile->narrowphase += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - broad).count();
@@ -913,8 +955,24 @@ void CollisionDetector::Impl::narrowphase(const Pair& pr, double margin, double 
     appendOverlappingBoxes(pr, margin, proto, out);
     return;
   }
+  if (geo[pr.slotB].front != Vec3::Zero()) {
+    appendTriangleContacts(pr, margin, speculative, proto, out);
+    return;
+  }
   if (appendFclContacts(pr, margin, proto, out)) return;
   appendWithinMargin(pr, speculative, proto, out);
+}
+
+void CollisionDetector::Impl::appendTriangleContacts(const Pair& pr, double margin, double speculative,
+                                                     const Contact& proto, std::vector<Contact>& out) {
+  // Along the front only: the patch of the body's feature over the triangle, touching or
+  // within the speculative distance. A neighbour's prism beside the body (the seam of a
+  // flat floor) would otherwise stop a sliding body on its side face.
+  const Geo& A = geo[pr.slotA];
+  const Geo& B = geo[pr.slotB];
+  if (appendFacePatch(A, B, -B.front, speculative, proto, out) > 0) return;
+  // Over no part of the triangle yet overlapping it: the body strikes its edge or corner.
+  appendFclContacts(pr, margin, proto, out);
 }
 
 bool CollisionDetector::Impl::appendBoxesBySeparatingAxis(const Pair& pr, double margin, double speculative,
@@ -1033,6 +1091,37 @@ bool CollisionDetector::Impl::appendFclContacts(const Pair& pr, double margin, c
     out.push_back(c);
   }
   return true;
+}
+
+void CollisionDetector::Impl::mergeCoplanar(std::vector<Contact>& out, size_t begin) {
+  if (out.size() - begin <= static_cast<size_t>(kMaxPatch)) return;
+  meshContacts.assign(out.begin() + static_cast<std::ptrdiff_t>(begin), out.end());
+  out.resize(begin);
+  constexpr double kSameNormal = 1e-9;
+  for (size_t i = 0; i < meshContacts.size(); ++i) {
+    if (meshContacts[i].a < 0) continue;  // taken into an earlier patch
+    const Vec3 n = meshContacts[i].normal;
+    meshPoints.clear();
+    meshGaps.clear();
+    std::vector<size_t>& members = meshMembers;
+    members.clear();
+    double radius = 0.0;
+    for (size_t j = i; j < meshContacts.size(); ++j) {
+      if (meshContacts[j].a < 0 || (meshContacts[j].normal - n).norm() > kSameNormal) continue;
+      members.push_back(j);
+      meshPoints.push_back(meshContacts[j].point);
+      meshGaps.push_back(-meshContacts[j].depth);
+      radius = std::max(radius, meshContacts[j].patchRadius);
+    }
+    int keep[kMaxPatch];
+    const int count = reducePatch(meshPoints.data(), meshGaps.data(), static_cast<int>(members.size()), n, keep);
+    for (int k = 0; k < count; ++k) {
+      Contact c = meshContacts[members[keep[k]]];
+      c.patchRadius = radius;
+      out.push_back(c);
+    }
+    for (size_t j : members) meshContacts[j].a = -1;
+  }
 }
 
 void CollisionDetector::Impl::appendWithinMargin(const Pair& pr, double margin, const Contact& proto,

@@ -74,6 +74,10 @@ const json& member(const json& j, const char* key, const std::string& field, con
 }
 
 json readCanonical(const std::string& folder, const std::string& file, const std::string& field) {
+  if (const std::string fault = pathFault(file); !fault.empty())
+    throw SceneError(field +
+                     ": must be a path inside the scene's folder (relative, no \"..\", \"/\" between folders); \"" +
+                     file + "\" " + fault);
   const std::string path = (folder.empty() ? "" : folder + "/") + file + ".mesh.json";
   std::ifstream in(std::filesystem::u8path(path), std::ios::binary);
   if (!in)
@@ -149,25 +153,73 @@ void measureHull(MeshShape& m) {
   for (const Vec3& v : h.vertices) m.boundingRadius = std::max(m.boundingRadius, v.norm());
 }
 
-}  // namespace
-
-std::shared_ptr<const MeshShape> readMeshShape(const std::string& folder, const std::string& file, const Vec3& scale,
-                                               const std::string& field, std::string& warning) {
-  if (const std::string fault = pathFault(file); !fault.empty())
-    throw SceneError(field +
-                     ": must be a path inside the scene's folder (relative, no \"..\", \"/\" between "
-                     "folders); \"" +
-                     file + "\" " + fault);
-  const json j = readCanonical(folder, file, field);
-  std::vector<Vec3> vertices;
+// The file's vertices, scaled, and its triangles.
+void readTriangles(const json& j, const Vec3& scale, const std::string& field, const std::string& file,
+                   std::vector<Vec3>& vertices, std::vector<std::array<int, 3>>& triangles) {
   for (const json& v : member(j, "vertices", field, file))
     vertices.push_back(point(v, "a vertex", field, file).cwiseProduct(scale));
-  std::vector<std::array<int, 3>> triangles;
   for (const json& t : member(j, "triangles", field, file)) {
     const std::vector<int> i = indices(t, 3, "triangle " + std::to_string(triangles.size()), field, file);
     if (i.size() != 3) refuse(field, file, "triangle " + std::to_string(triangles.size()) + " must list 3 vertices");
     triangles.push_back({i[0], i[1], i[2]});
   }
+}
+
+// The prism of the triangle (a, b, c), counter-clockwise seen from its front, reaching
+// `thickness` behind it, about its centre: front, back and three sides, each wound
+// counter-clockwise seen from outside.
+ConvexHull prism(const Vec3& a, const Vec3& b, const Vec3& c, double thickness, Vec3& centre) {
+  const Vec3 front = (b - a).cross(c - a).normalized();
+  centre = (a + b + c) / 3.0 - 0.5 * thickness * front;
+  ConvexHull h;
+  for (const Vec3& v : {a, b, c}) h.vertices.push_back(v - centre);
+  for (const Vec3& v : {a, b, c}) h.vertices.push_back(v - thickness * front - centre);
+  const std::vector<std::vector<int>> faces = {{0, 1, 2}, {3, 5, 4}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}};
+  h.faceStart.push_back(0);
+  for (const std::vector<int>& f : faces) {
+    Vec3 n = Vec3::Zero();
+    for (size_t k = 0; k < f.size(); ++k) n += h.vertices[f[k]].cross(h.vertices[f[(k + 1) % f.size()]]);
+    n.normalize();
+    h.faceVertex.insert(h.faceVertex.end(), f.begin(), f.end());
+    h.faceStart.push_back(static_cast<int>(h.faceVertex.size()));
+    h.faceNormal.push_back(n);
+    h.faceOffset.push_back(n.dot(h.vertices[f[0]]));
+  }
+  return h;
+}
+
+}  // namespace
+
+std::shared_ptr<const SurfaceMesh> readSurfaceMesh(const std::string& folder, const std::string& file,
+                                                   const Vec3& scale, const Vec3& position, const Quat& orientation,
+                                                   double thickness, const std::string& field) {
+  const json j = readCanonical(folder, file, field);
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int, 3>> triangles;
+  readTriangles(j, scale, field, file, vertices, triangles);
+  if (const std::string fault = sheetFault(vertices, triangles); !fault.empty()) refuse(field, file, fault);
+  auto m = std::make_shared<SurfaceMesh>();
+  m->file = file;
+  m->thickness = thickness;
+  const Mat3 R = orientation.normalized().toRotationMatrix();
+  for (Vec3& v : vertices) v = position + R * v;
+  for (const std::array<int, 3>& t : triangles) {
+    Vec3 centre;
+    m->prisms.push_back(prism(vertices[t[0]], vertices[t[1]], vertices[t[2]], thickness, centre));
+    m->centres.push_back(centre);
+    m->fronts.push_back(m->prisms.back().faceNormal[0]);
+    m->triangles.insert(m->triangles.end(), t.begin(), t.end());
+  }
+  m->vertices = std::move(vertices);
+  return m;
+}
+
+std::shared_ptr<const MeshShape> readMeshShape(const std::string& folder, const std::string& file, const Vec3& scale,
+                                               const std::string& field, std::string& warning) {
+  const json j = readCanonical(folder, file, field);
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int, 3>> triangles;
+  readTriangles(j, scale, field, file, vertices, triangles);
   if (const std::string fault = meshFault(vertices, triangles); !fault.empty()) refuse(field, file, fault);
   const SolidMass solid = meshSolidMass(vertices, triangles);
   auto m = std::make_shared<MeshShape>();

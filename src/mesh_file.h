@@ -23,6 +23,13 @@ namespace rigid {
 std::shared_ptr<const MeshShape> readMeshShape(const std::string& folder, const std::string& file, const Vec3& scale,
                                                const std::string& field, std::string& warning);
 
+// The static surface of FILE's triangles (open or closed; none without area), scaled,
+// turned by `orientation` and moved by `position` into the world; SceneError naming
+// `field` as readMeshShape's.
+std::shared_ptr<const SurfaceMesh> readSurfaceMesh(const std::string& folder, const std::string& file,
+                                                   const Vec3& scale, const Vec3& position, const Quat& orientation,
+                                                   double thickness, const std::string& field);
+
 // A hull larger than the solid by more than this share of its volume is reported.
 constexpr double kHullExcess = 0.1;
 

@@ -40,4 +40,18 @@ struct MeshShape {
   std::vector<int> triangles;  // three indices each
 };
 
+// A static surface given by a triangle mesh (a bin, a chute, terrain), in the world
+// frame. It need not be closed: each triangle is one-sided, its front the side its
+// vertices run counter-clockwise around, and collides as a prism `thickness` deep
+// behind it, so that a body pressed into it is pushed out along its front.
+struct SurfaceMesh {
+  std::string file;                // as the scene names it
+  double thickness = 0.0;          // m
+  std::vector<ConvexHull> prisms;  // one per triangle, about its centre
+  std::vector<Vec3> centres;       // m, world frame: each prism's
+  std::vector<Vec3> fronts;        // unit, world frame: each triangle's front normal
+  std::vector<Vec3> vertices;      // m, world frame (for drawing)
+  std::vector<int> triangles;      // three indices each
+};
+
 }  // namespace rigid

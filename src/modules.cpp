@@ -15,6 +15,8 @@ unsigned modulesNeeded(const WorldModel& model) {
   if (!model.joints.empty()) m |= kModuleJoints | kModuleCollisions | kModuleSurfaces;
   for (const BodyConstants& b : model.bodies)
     if (b.shape.type == ShapeType::Mesh || b.shape.type == ShapeType::Compound) m |= kModuleMeshes;
+  for (const Surface& s : model.surfaces)
+    if (s.mesh) m |= kModuleMeshes;
   return m;
 }
 

@@ -279,16 +279,37 @@ bool moving(const json& surface) {
   return surface.is_object() && surface.contains("motion") && surface.at("motion") == "driven";
 }
 
-Surface readSurface(const json& j, const std::string& path) {
+// A surface of a mesh file's triangles: "mesh": {"file", "scale", "thickness"}, the
+// file's frame placed by "position" and "orientation"; min and max become the box that
+// bounds the triangles.
+void readMeshSurface(const Object& o, const SceneFiles& files, Surface& s) {
+  for (const char* key : {"min", "max", "beltVelocity"})
+    if (o.has(key)) fail(o.path(key), "a mesh surface is placed by position and orientation, and has no belt");
+  const Object m(o.at("mesh"), o.path("mesh"), {"file", "scale", "thickness"});
+  const std::string file = m.string("file");
+  if (!files.folder) fail(m.path("file"), "a mesh needs the scene's folder: read the scene from its file");
+  const double thickness = positive(m, "thickness", &defaults::kSurfaceMeshThickness);
+  s.mesh = readSurfaceMesh(*files.folder, file, meshScale(m), o.vec3("position", Vec3::Zero()),
+                           unitQuaternion(o, "orientation"), thickness, m.path("file"));
+  s.min = s.max = s.mesh->vertices.front();
+  for (const Vec3& v : s.mesh->vertices) s.min = s.min.cwiseMin(v), s.max = s.max.cwiseMax(v);
+}
+
+Surface readSurface(const json& j, const std::string& path, const SceneFiles& files) {
   Object o(j, path,
            {"name", "motion", "min", "max", "orientation", "staticFriction", "kineticFriction", "restitution",
-            "rollingResistance", "outputs", "beltVelocity"});
+            "rollingResistance", "outputs", "beltVelocity", "mesh", "position"});
   if (o.string("motion", "static") != "static")
     fail(o.path("motion"), "must be one of static, driven, got \"" + o.string("motion", "") + "\"");
   Surface s;
   s.name = identifier(o, "name");
-  readBox(o, s.min, s.max);
-  s.orientation = unitQuaternion(o, "orientation");
+  if (o.has("mesh")) {
+    readMeshSurface(o, files, s);
+  } else {
+    if (o.has("position")) fail(o.path("position"), "a box surface is placed by min and max");
+    readBox(o, s.min, s.max);
+    s.orientation = unitQuaternion(o, "orientation");
+  }
   friction(o, s.staticFriction, s.kineticFriction);
   s.restitution = inRange(o, "restitution", defaults::kRestitution, 0.0, 1.0);
   s.rollingResistance = rollingResistance(o);
@@ -376,7 +397,7 @@ BodyVariables variablesOf(const json& j, const std::string& path, const BodyCons
 
 // The static surfaces into the model's surfaces; moving ones become driven bodies,
 // after the scene's bodies.
-void readSurfaces(const Object& o, Scene& scene) {
+void readSurfaces(const Object& o, Scene& scene, const SceneFiles& files) {
   if (!o.has("surfaces")) return;
   const json& list = o.at("surfaces");
   if (!list.is_array()) fail("surfaces", "must be an array");
@@ -387,7 +408,7 @@ void readSurfaces(const Object& o, Scene& scene) {
     const std::string name = identifier(named, "name");
     if (!names.insert(name).second) fail(path + ".name", "must be unique in surfaces, \"" + name + "\" is used twice");
     if (!moving(list[i])) {
-      scene.model.surfaces.push_back(readSurface(list[i], path));
+      scene.model.surfaces.push_back(readSurface(list[i], path, files));
       continue;
     }
     scene.model.bodies.push_back(readMovingSurface(list[i], path));
@@ -445,7 +466,7 @@ Scene parseScene(const std::string& text, const SceneFiles& files) {
   if (m.bodies.empty()) fail("bodies", "must hold at least one body");
   for (size_t i = 0; i < m.bodies.size(); ++i)
     scene.variables.push_back(variablesOf(o.at("bodies")[i], "bodies[" + std::to_string(i) + "]", m.bodies[i]));
-  readSurfaces(o, scene);
+  readSurfaces(o, scene, files);
   m.media = readList<Medium>(o, "media", false, readMedium);
   for (size_t i = 0; i < m.bodies.size() && !m.media.empty(); ++i)
     if (m.bodies[i].shape.type == ShapeType::Mesh || m.bodies[i].shape.type == ShapeType::Compound)

@@ -56,6 +56,9 @@ constexpr double kAirDensity = 1.204;         // kg/m^3, 20 C, 1 atm
 constexpr double kAirViscosity = 1.813e-5;    // Pa s
 constexpr double kWaterDensity = 998.2;       // kg/m^3, 20 C
 constexpr double kWaterViscosity = 1.002e-3;  // Pa s
+// m: how deep behind its front a mesh surface's triangle collides: a body must not
+// cross it within one internal step.
+constexpr double kSurfaceMeshThickness = 0.1;
 }  // namespace defaults
 
 }  // namespace rigid

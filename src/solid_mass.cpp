@@ -111,6 +111,15 @@ std::string meshFault(const std::vector<Vec3>& vertices, const std::vector<std::
   return "";
 }
 
+std::string sheetFault(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles) {
+  for (size_t i = 0; i < vertices.size(); ++i)
+    if (!vertices[i].allFinite()) return "vertex " + std::to_string(i) + " is not finite";
+  if (triangles.empty()) return "no triangles";
+  for (size_t k = 0; k < triangles.size(); ++k)
+    if (std::string why = triangleFault(vertices, triangles[k], k); !why.empty()) return why;
+  return "";
+}
+
 PartMass placePart(const SolidMass& solid, double density, const Vec3& position, const Quat& orientation) {
   const Mat3 R = orientation.normalized().toRotationMatrix();
   return {density * solid.volume, position + R * solid.centre, density * R * solid.inertia * R.transpose()};

@@ -32,6 +32,11 @@ SolidMass meshSolidMass(const std::vector<Vec3>& vertices, const std::vector<std
 // triangles wound clockwise seen from outside). The reason names the triangle or edge.
 std::string meshFault(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles);
 
+// Why the triangles are no surface to collide with, or "": a vertex not finite, no
+// triangle, a triangle naming no vertex or one vertex twice, or of no area. An open
+// mesh (a sheet, a bin) is a surface.
+std::string sheetFault(const std::vector<Vec3>& vertices, const std::vector<std::array<int, 3>>& triangles);
+
 // A part of a compound body, or the compound: mass, centre of mass and inertia tensor
 // about that centre, all in the compound's frame.
 struct PartMass {

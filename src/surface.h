@@ -2,9 +2,11 @@
 // static and kinetic friction.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "math_types.h"
+#include "mesh_shape.h"
 
 namespace rigid {
 
@@ -23,6 +25,9 @@ struct Surface {
   // (its value in a run: WorldData::beltVelocity).
   bool belt = false;
   Vec3 beltVelocity = Vec3::Zero();
+  // A surface of a mesh file's triangles (the scene's "mesh"); min and max then bound
+  // them, and the box is not a surface of its own.
+  std::shared_ptr<const SurfaceMesh> mesh;
   // Derived by finishSurface():
   Vec3 centre = Vec3::Zero();      // m, world frame
   Mat3 R_WS = Mat3::Identity();    // surface frame -> world
@@ -31,5 +36,12 @@ struct Surface {
 
 // Fills the derived fields from min, max and orientation.
 void finishSurface(Surface& surface);
+
+// Half the surface's least thickness (m): how far a body may move between two
+// detections without passing through it unseen. A mesh surface's triangles are prisms
+// `thickness` deep.
+inline double surfaceHalfThickness(const Surface& s) {
+  return s.mesh ? 0.5 * s.mesh->thickness : s.halfExtent.minCoeff();
+}
 
 }  // namespace rigid

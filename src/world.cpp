@@ -64,7 +64,7 @@ WorldData initialData(const WorldModel& model) {
         if (meetsSurfaces[i]) d.collision->thinnest = std::min(d.collision->thinnest, halfThickness(shape));
       }
       for (const Surface& s : model.surfaces)
-        d.collision->thinnest = std::min(d.collision->thinnest, s.halfExtent.minCoeff());
+        d.collision->thinnest = std::min(d.collision->thinnest, surfaceHalfThickness(s));
     }
   }
   d.scratch.stage.resize(n);
@@ -434,7 +434,7 @@ int collisionSubsteps(const WorldModel& model, const WorldData& data, double h) 
     for (const Surface& s : model.surfaces) {
       const Vec3 p = (s.R_WS.transpose() * (data.Y[i].X - s.centre)).cwiseAbs() - s.halfExtent;
       if (p.cwiseMax(0.0).norm() > reach) continue;
-      need(travel[i], std::min(c->halfThickness[i], s.halfExtent.minCoeff()));
+      need(travel[i], std::min(c->halfThickness[i], surfaceHalfThickness(s)));
     }
   }
   constexpr double kMaxSubsteps = 100000;

@@ -274,3 +274,96 @@ def test_the_mass_of_a_compound_is_its_parts_volumes_times_the_density(fmu_of):
     from fmpy import read_model_description
     md = read_model_description(str(fmu_of(scenes.scene("GammaMass", [body]), files=files)))
     assert float(next(v for v in md.modelVariables if v.name == "gamma.mass").start) == pytest.approx(5.5, rel=1e-7)
+
+
+# ---- static mesh surfaces ---------------------------------------------------------------
+
+def strip(length, width, along, across):
+    """A flat strip in the file's xy plane, x in [-length/2, length/2], its front +z, cut
+    into along x across cells of two triangles each (their seams cross a body's path)."""
+    xs, ys = np.linspace(-length / 2, length / 2, along + 1), np.linspace(-width / 2, width / 2, across + 1)
+    vertices = [(x, y, 0.0) for x in xs for y in ys]
+    faces = []
+    for i in range(along):
+        for j in range(across):
+            a, b, c, d = i * (across + 1) + j, (i + 1) * (across + 1) + j, (i + 1) * (across + 1) + j + 1, \
+                i * (across + 1) + j + 1
+            faces += [(a, b, c), (a, c, d)]
+    return trimesh.Trimesh(vertices, faces, process=False)
+
+
+def mesh_ramp(theta, **fields):
+    """The strip of 3 x 1 m in 24 triangles, turned by theta about y: it descends
+    towards +x."""
+    return {"name": "ramp", "mesh": {"file": "ramp.stl"}, "orientation": quat_about_y(theta), **fields}
+
+
+RAMP_FILES = {"ramp.stl": stl(strip(3.0, 1.0, 6, 2)), **CUBE_FILES}
+
+
+def test_a_box_slides_down_a_mesh_ramp_at_the_closed_form_acceleration(slave):
+    """The cube on the 30 deg mesh ramp (mu_s 0.5 < tan 30 deg, mu_k 0.3) slides at
+    g (sin - mu_k cos) within 1 %, over the ramp's seams."""
+    theta = math.radians(30.0)
+    n = np.array([math.sin(theta), 0.0, math.cos(theta)])
+    down = np.array([math.cos(theta), 0.0, -math.sin(theta)])
+    start = -1.0 * down + (EDGE / 2) * n
+    cube = scenes.body("cube", shape=BOX, mass=2.0, position=list(start), orientation=quat_about_y(theta),
+                       staticFriction=0.5, kineticFriction=0.3, restitution=0.0)
+    ramp = mesh_ramp(theta, staticFriction=0.5, kineticFriction=0.3, restitution=0.0)
+    s = slave(scenes.scene("MeshRamp", [cube], surfaces=[ramp]), files=RAMP_FILES)
+    t, travel = [], []
+    for k in range(round(1.0 / H)):
+        s.slave.doStep(k * H, H)
+        t.append((k + 1) * H)
+        travel.append((np.array(s.get("cube.position[1]", "cube.position[2]", "cube.position[3]")) - start) @ down)
+    t, travel = np.array(t), np.array(travel)
+    late = t >= 0.3 - 1e-9
+    assert 2 * np.polyfit(t[late], travel[late], 2)[0] == pytest.approx(G * (math.sin(theta) - 0.3 * math.cos(theta)),
+                                                                        rel=1e-2)
+
+
+def test_a_ball_rolls_down_a_mesh_chute_at_the_speed_energy_gives(slave):
+    """A ball set at rest on the 20 deg mesh chute rolls without slipping (mu_s 0.6 >
+    2/7 tan 20 deg) over its seams: having come s down the slope, v^2 = 10/7 g s sin 20 deg
+    within 1 % in speed, to the chute's end, where it leaves it at that speed."""
+    theta, r = math.radians(20.0), 0.05
+    n = np.array([math.sin(theta), 0.0, math.cos(theta)])
+    down = np.array([math.cos(theta), 0.0, -math.sin(theta)])
+    start = -1.4 * down + r * n
+    ball = scenes.body("ball", shape={"type": "sphere", "radius": r}, position=list(start), staticFriction=0.6,
+                       kineticFriction=0.5, restitution=0.0)
+    chute = mesh_ramp(theta, staticFriction=0.6, kineticFriction=0.5, restitution=0.0)
+    s = slave(scenes.scene("MeshChute", [ball], surfaces=[chute]), files=RAMP_FILES)
+    checked = 0
+    for k in range(round(2.0 / 0.01)):
+        s.slave.doStep(k * 0.01, 0.01)
+        travel = (np.array(s.get("ball.position[1]", "ball.position[2]", "ball.position[3]")) - start) @ down
+        if travel > 2.9:  # the chute's end (1.5 m down from its middle) is 2.9 m from the start
+            break
+        if travel > 0.1:
+            v = np.linalg.norm(s.get("ball.velocity[1]", "ball.velocity[2]", "ball.velocity[3]"))
+            assert v == pytest.approx(math.sqrt(10 / 7 * G * travel * math.sin(theta)), rel=1e-2)
+            checked += 1
+    assert checked > 50 and travel > 2.8
+
+
+@pytest.mark.parametrize("shape, height", [
+    ({"type": "sphere", "radius": 0.1}, 0.1),
+    (BOX, EDGE / 2),
+    ({"type": "cylinder", "radius": 0.1, "length": 0.3}, 0.15),
+    ({"type": "capsule", "radius": 0.05, "length": 0.2}, 0.05),
+    (MESH_CUBE, EDGE / 2),
+])
+def test_every_shape_rests_on_a_mesh_floor_at_its_height(slave, shape, height):
+    """Set down a little above a flat mesh floor of 24 triangles, off its seams' lines,
+    a body of each shape rests with its centre at its closed-form height within 1 mm:
+    a sphere r, a cube half its edge, a cylinder on end half its length, a capsule on its
+    side its radius."""
+    lying = [math.cos(math.pi / 4), math.sin(math.pi / 4), 0.0, 0.0] if shape["type"] == "capsule" else [1, 0, 0, 0]
+    body = scenes.body("body", shape=shape, position=[0.13, 0.07, height + 0.01], orientation=lying,
+                       restitution=0.0)
+    floor = {"name": "floor", "mesh": {"file": "ramp.stl"}, "restitution": 0.0}
+    v = run(slave, scenes.scene(f"MeshFloor_{shape['type']}", [body], surfaces=[floor]), RAMP_FILES, 1.0,
+            names_of("body"))
+    assert position(v, "body") == pytest.approx([0.13, 0.07, height], abs=1e-3)

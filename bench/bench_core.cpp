@@ -25,6 +25,9 @@
 //     largest distance between a joint's two anchor points, and angle between a hinge's
 //     two axes, over joints and steps), the energy (kinetic + potential, J) at the start
 //     and its largest departure, and the tip's position at the end.
+//   BM_PileHulls/<N>: BM_PileWindows on pile_hulls_<N>.json (reports/mesh_scenes.py): the
+//     pile of N cubes with each cube a convex mesh, a pebble of 100 hull vertices; the
+//     overlap between two pebbles is the detector's contact depth.
 //   BM_Narrow/<shape>/<pair>: the narrowphase of one pair (issue 42): CollisionDetector::
 //     detect on narrow_<shape>.json (reports/mesh_scenes.py: two bodies of one shape, a
 //     hull of N vertices or the cube beside them, and a floor), posed by narrowPoses:
@@ -123,6 +126,16 @@ double boxPenetration(const rigid::Vec3& halfA, const rigid::Mat3& Ra, const rig
   return depth;
 }
 
+// The points of a body's shape whose hull it is, in the body frame: a mesh's hull
+// vertices, a box's corners (the benchmarks' scenes have no other shapes).
+std::vector<rigid::Vec3> shapePoints(const rigid::Shape& s) {
+  if (s.type == rigid::ShapeType::Mesh) return s.mesh->hull.vertices;
+  std::vector<rigid::Vec3> corners;
+  for (int k = 0; k < 8; ++k)
+    corners.push_back(0.5 * s.size.cwiseProduct(rigid::Vec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1)));
+  return corners;
+}
+
 // Deepest overlap (m) in the state the step hands back (what the FMU outputs): the
 // penetration depth of every pair a fresh detection of Y finds touching (a probe
 // detector of the benchmark's own), and each cube's lowest corner below the floor's
@@ -137,13 +150,16 @@ double deepestOverlapOfState(const rigid::Scene& scene, const rigid::WorldData& 
     if (c.b < 0 || c.depth <= 0.0) continue;
     const rigid::BodyConstants& a = scene.model.bodies[c.a];
     const rigid::BodyConstants& b = scene.model.bodies[c.b];
+    if (a.shape.type != rigid::ShapeType::Box || b.shape.type != rigid::ShapeType::Box) {
+      deepest = std::max(deepest, c.depth);  // a mesh's pairs (pile_hulls_<N>): the detector's depth
+      continue;
+    }
     deepest = std::max(deepest, boxPenetration(0.5 * a.shape.size, data.aux[c.a].R, data.Y[c.a].X, 0.5 * b.shape.size,
                                                data.aux[c.b].R, data.Y[c.b].X));
   }
-  for (size_t i = 0; i < data.Y.size(); ++i) {
-    const rigid::Vec3 half = 0.5 * scene.model.bodies[i].shape.size;
-    deepest = std::max(deepest, data.aux[i].R.row(2).cwiseAbs().dot(half) - data.Y[i].X.z());
-  }
+  for (size_t i = 0; i < data.Y.size(); ++i)  // the lowest corner or hull vertex
+    for (const rigid::Vec3& p : shapePoints(scene.model.bodies[i].shape))
+      deepest = std::max(deepest, -(data.Y[i].X + data.aux[i].R * p).z());
   return deepest;
 }
 
@@ -386,16 +402,6 @@ void chain(benchmark::State& state, const std::string& file, int milliseconds) {
   state.counters["tip_z_m"] = tip.z();
 }
 
-// The points of a body's shape whose hull it is, in the body frame: a mesh's hull
-// vertices, a box's corners (the other shapes are not posed by narrowPoses).
-std::vector<rigid::Vec3> shapePoints(const rigid::Shape& s) {
-  if (s.type == rigid::ShapeType::Mesh) return s.mesh->hull.vertices;
-  std::vector<rigid::Vec3> corners;
-  for (int k = 0; k < 8; ++k)
-    corners.push_back(0.5 * s.size.cwiseProduct(rigid::Vec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1)));
-  return corners;
-}
-
 // The point of the shape farthest along world direction d, relative to the centre of
 // mass, in the world frame, at orientation q.
 rigid::Vec3 extremePoint(const rigid::Shape& s, const rigid::Quat& q, const rigid::Vec3& d) {
@@ -489,6 +495,10 @@ int main(int argc, char** argv) {
                                  ms)
         ->Unit(benchmark::kMillisecond)
         ->Iterations(1);
+  // the pile of pebbles (reports/mesh_scenes.py's PILE_COUNTS)
+  benchmark::RegisterBenchmark("BM_PileHulls/100", pileWindows, std::string("pile_hulls_100.json"), true)
+      ->Unit(benchmark::kMillisecond)
+      ->Iterations(1);
   // the narrowphase of one pair: hulls of reports/mesh_scenes.py's HULL_VERTICES, and the cube
   std::vector<std::string> shapes{"cube"};
   for (int n : {100, 300, 1000}) shapes.push_back("hull_" + std::to_string(n));

@@ -7,10 +7,15 @@ Each hull is written as a binary STL (hull_<N>.stl, as a CAD tool exports it) an
 FILE.mesh.json `rigidfmu build` makes of it (rigidfmu.mesh_conversion, decision 0006), so
 that the core reads it as it reads a user's mesh. The narrowphase scenes narrow_<shape>.json
 hold two bodies of one shape (a hull of N vertices, or the cube the hulls are set beside)
-and a floor; the benchmark poses them itself (bench_core.cpp, narrowPoses).
+and a floor; the benchmark poses them itself (bench_core.cpp, narrowPoses). The pile
+pile_hulls_<N>.json is reports.scenes' pile of N cubes with each cube replaced by a hull
+of PILE_HULL_VERTICES points on an ellipsoid of semi-axes PILE_HULL_AXES (a pebble, which
+fits in the cube's place and settles where a sphere would roll), turned by more than the
+cubes are; MuJoCo runs it from the same STL (reports.performance_peers --mesh-pile).
 
   hull_<N>.stl, hull_<N>.stl.mesh.json    N in HULL_VERTICES
   narrow_hull_<N>.json, narrow_cube.json  two bodies and a floor
+  pebble.stl, pebble.stl.mesh.json, pile_hulls_<N>.json   N in PILE_COUNTS
 """
 import json
 import math
@@ -19,6 +24,7 @@ import pathlib
 import numpy as np
 import trimesh
 
+from reports import scenes
 from rigidfmu.mesh_conversion import convert
 from rigidfmu.scenes import body, floor, scene
 
@@ -26,6 +32,10 @@ HULL_VERTICES = (100, 300, 1000)  # the issue's range: 100-1000 hull vertices
 HULL_RADIUS = 0.1                 # m
 CUBE_EDGE = 2 * HULL_RADIUS       # m: the cube the hulls are set beside, as wide as they are
 DENSITY = 1000.0                  # kg/m^3: the hull bodies' mass from their solid
+PILE_COUNTS = (100,)
+PILE_HULL_VERTICES = 100
+PILE_HULL_AXES = (0.05, 0.04, 0.03)  # m: at most as wide as the pile's cubes (0.1 m)
+PILE_TURN = 1.2                   # rad: the pebbles' turns about x and y, times the cubes' tilt pattern
 
 
 def sphere_points(n, radius=HULL_RADIUS):
@@ -43,13 +53,34 @@ def hull_mesh(n, radius=HULL_RADIUS):
     return trimesh.convex.convex_hull(sphere_points(n, radius))
 
 
-def write_hull(directory, n, radius=HULL_RADIUS, name=None):
+def pebble_mesh():
+    """The pile's pebble: the hull of PILE_HULL_VERTICES points on an ellipsoid."""
+    return trimesh.convex.convex_hull(sphere_points(PILE_HULL_VERTICES, 1.0) * np.array(PILE_HULL_AXES))
+
+
+def write_mesh(directory, mesh, name):
     """DIR/<name>.stl and its FILE.mesh.json; the file name the scenes give."""
-    file = f"{name or f'hull_{n}'}.stl"
+    file = f"{name}.stl"
     path = pathlib.Path(directory) / file
-    hull_mesh(n, radius).export(str(path), file_type="stl")
+    mesh.export(str(path), file_type="stl")
     (path.parent / (file + ".mesh.json")).write_bytes(convert(path, file, "bench"))
     return file
+
+
+def pile_hulls_scene(n, file, mass):
+    """reports.scenes' pile of n cubes, each cube a pebble (the mesh `file`) in its place,
+    turned by PILE_TURN times the cube's tilt about x and about y."""
+    pile = scenes.pile_scene(n)
+    pile["name"] = f"PileHulls{n}"
+    # the energy audit off, as for the free bodies' timing: rk4 at the pile's 2 ms sums a
+    # rotational energy gain of 1e-3 on a pebble spinning in flight after 0.64 s (a
+    # pebble's principal moments differ, a cube's do not), and would refuse the step
+    pile["solver"]["energyGainLimit"] = 0.0
+    for k, ((x, y, z), (ax, ay)) in enumerate(scenes.pile_layout(n)):
+        b = pile["bodies"][k]
+        b.update(name=f"p{k}", shape={"type": "mesh", "file": file}, mass=mass,
+                 orientation=scenes.quat_xy(PILE_TURN / 0.05 * ax, PILE_TURN / 0.05 * ay))
+    return pile
 
 
 def narrow_scene(name, shape, mass):
@@ -63,9 +94,13 @@ def write(directory):
     d = pathlib.Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     for n in HULL_VERTICES:
-        file = write_hull(d, n)
+        file = write_mesh(d, hull_mesh(n), f"hull_{n}")
         mass = DENSITY * hull_mesh(n).volume
         (d / f"narrow_hull_{n}.json").write_text(json.dumps(narrow_scene(f"hull{n}", {"type": "mesh", "file": file},
                                                                          mass)))
     cube = {"type": "box", "size": [CUBE_EDGE] * 3}
     (d / "narrow_cube.json").write_text(json.dumps(narrow_scene("cube", cube, DENSITY * CUBE_EDGE ** 3)))
+    pebble = pebble_mesh()
+    file = write_mesh(d, pebble, "pebble")
+    for n in PILE_COUNTS:
+        (d / f"pile_hulls_{n}.json").write_text(json.dumps(pile_hulls_scene(n, file, DENSITY * pebble.volume)))

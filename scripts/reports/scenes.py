@@ -27,7 +27,6 @@ import math
 import pathlib
 import sys
 
-from reports import mesh_scenes
 from rigidfmu.scenes import G, body, diag, floor, scene
 
 FREE_COUNTS = (1, 10, 100, 1000, 10000)
@@ -151,6 +150,7 @@ def write(directory, tilt=TILT):
         (d / f"tumbling_{n}.json").write_text(json.dumps(tumbling_scene(n)))
         (d / f"driven_{n}.json").write_text(json.dumps(driven_scene(n)))
     (d / f"chain_{CHAIN_LINKS}.json").write_text(json.dumps(chain_scene()))
+    from reports import mesh_scenes  # here: it builds on this module's piles
     mesh_scenes.write(d)
 
 

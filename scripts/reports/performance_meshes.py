@@ -81,10 +81,16 @@ def our_mesh_pile(b):
     return out
 
 
+def median_round(rounds, engine):
+    """The figures of `engine`'s round with the median falling time (None if not run)."""
+    runs = sorted((r[engine] for r in rounds if r[engine]), key=lambda x: x["fall_s_per_simulated_s"])
+    return runs[len(runs) // 2] if runs else None
+
+
 def run_mesh_pile(build, scenes, folder, peers_python, quick):
     """The pebbles' pile (mesh_scenes.PILE_COUNTS[0]) ours and MuJoCo's, round by round (1
-    round in quick mode, 3 else): {n, rounds: [{ours, mujoco}], ours: the median round's
-    figures, mujoco: the last round's, ratio_fall, ratio_rest: medians}; without MuJoCo
+    round in quick mode, 3 else): {n, rounds: [{ours, mujoco}], ours, mujoco: each engine's
+    median round by its falling time, ratio_fall, ratio_rest: medians}; without MuJoCo
     (no peers_python) its figures and ratios are None."""
     n = mesh_scenes.PILE_COUNTS[0]
     rounds = []
@@ -97,9 +103,9 @@ def run_mesh_pile(build, scenes, folder, peers_python, quick):
                             "--mesh-pile", str(n)], check=True)
             theirs = json.loads(out.read_text())
         rounds.append({"ours": ours, "mujoco": theirs})
-    ours = sorted((r["ours"] for r in rounds), key=lambda o: o["fall_s_per_simulated_s"])[len(rounds) // 2]
     result = {"n": n, "vertices": mesh_scenes.PILE_HULL_VERTICES, "axes_m": list(mesh_scenes.PILE_HULL_AXES),
-              "rounds": rounds, "ours": ours, "mujoco": rounds[-1]["mujoco"], "ratio_fall": None, "ratio_rest": None}
+              "rounds": rounds, "ours": median_round(rounds, "ours"), "mujoco": median_round(rounds, "mujoco"),
+              "ratio_fall": None, "ratio_rest": None}
     if result["mujoco"]:
         for w in ("fall", "rest"):
             result[f"ratio_{w}"] = statistics.median(r["ours"][f"{w}_s_per_simulated_s"] /

@@ -25,6 +25,16 @@
 //     largest distance between a joint's two anchor points, and angle between a hinge's
 //     two axes, over joints and steps), the energy (kinetic + potential, J) at the start
 //     and its largest departure, and the tip's position at the end.
+//   BM_PileHulls/<N>: BM_PileWindows on pile_hulls_<N>.json (reports/mesh_scenes.py): the
+//     pile of N cubes with each cube a convex mesh, a pebble of 100 hull vertices; the
+//     overlap between two pebbles is the detector's contact depth.
+//   BM_Narrow/<shape>/<pair>: the narrowphase of one pair (issue 42): CollisionDetector::
+//     detect on narrow_<shape>.json (reports/mesh_scenes.py: two bodies of one shape, a
+//     hull of N vertices or the cube beside them, and a floor), posed by narrowPoses:
+//     "surface", the first body on the floor, its lowest point 1 mm below the floor's
+//     top; "body", the second on the first, 1 mm into it, away from the floor. Each
+//     call finds that one pair (its broadphase of 2-3 boxes included): the counters
+//     ns_per_pair and contacts_per_pair, and the hull's vertices and faces.
 #include <benchmark/benchmark.h>
 #include <time.h>  // clock_gettime, CLOCK_THREAD_CPUTIME_ID (POSIX)
 
@@ -39,6 +49,7 @@
 #include <vector>
 
 #include "collision_cache.h"
+#include "collision_detection.h"
 #include "scene.h"
 #include "world.h"
 
@@ -115,6 +126,16 @@ double boxPenetration(const rigid::Vec3& halfA, const rigid::Mat3& Ra, const rig
   return depth;
 }
 
+// The points of a body's shape whose hull it is, in the body frame: a mesh's hull
+// vertices, a box's corners (the benchmarks' scenes have no other shapes).
+std::vector<rigid::Vec3> shapePoints(const rigid::Shape& s) {
+  if (s.type == rigid::ShapeType::Mesh) return s.mesh->hull.vertices;
+  std::vector<rigid::Vec3> corners;
+  for (int k = 0; k < 8; ++k)
+    corners.push_back(0.5 * s.size.cwiseProduct(rigid::Vec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1)));
+  return corners;
+}
+
 // Deepest overlap (m) in the state the step hands back (what the FMU outputs): the
 // penetration depth of every pair a fresh detection of Y finds touching (a probe
 // detector of the benchmark's own), and each cube's lowest corner below the floor's
@@ -129,13 +150,16 @@ double deepestOverlapOfState(const rigid::Scene& scene, const rigid::WorldData& 
     if (c.b < 0 || c.depth <= 0.0) continue;
     const rigid::BodyConstants& a = scene.model.bodies[c.a];
     const rigid::BodyConstants& b = scene.model.bodies[c.b];
+    if (a.shape.type != rigid::ShapeType::Box || b.shape.type != rigid::ShapeType::Box) {
+      deepest = std::max(deepest, c.depth);  // a mesh's pairs (pile_hulls_<N>): the detector's depth
+      continue;
+    }
     deepest = std::max(deepest, boxPenetration(0.5 * a.shape.size, data.aux[c.a].R, data.Y[c.a].X, 0.5 * b.shape.size,
                                                data.aux[c.b].R, data.Y[c.b].X));
   }
-  for (size_t i = 0; i < data.Y.size(); ++i) {
-    const rigid::Vec3 half = 0.5 * scene.model.bodies[i].shape.size;
-    deepest = std::max(deepest, data.aux[i].R.row(2).cwiseAbs().dot(half) - data.Y[i].X.z());
-  }
+  for (size_t i = 0; i < data.Y.size(); ++i)  // the lowest corner or hull vertex
+    for (const rigid::Vec3& p : shapePoints(scene.model.bodies[i].shape))
+      deepest = std::max(deepest, -(data.Y[i].X + data.aux[i].R * p).z());
   return deepest;
 }
 
@@ -378,6 +402,63 @@ void chain(benchmark::State& state, const std::string& file, int milliseconds) {
   state.counters["tip_z_m"] = tip.z();
 }
 
+// The point of the shape farthest along world direction d, relative to the centre of
+// mass, in the world frame, at orientation q.
+rigid::Vec3 extremePoint(const rigid::Shape& s, const rigid::Quat& q, const rigid::Vec3& d) {
+  const rigid::Mat3 R = q.toRotationMatrix();
+  const std::vector<rigid::Vec3> points = shapePoints(s);
+  rigid::Vec3 best = R * points.front();
+  for (const rigid::Vec3& p : points)
+    if ((R * p).dot(d) > best.dot(d)) best = R * p;
+  return best;
+}
+
+// The poses of BM_Narrow's two bodies. A hull is turned by a rotation of no symmetry
+// (the second otherwise than the first); a cube stays square to the floor, as in a pile
+// at rest (a face patch of four points). "surface": the first body on the floor, its
+// lowest point 1 mm below z = 0, the second far above. "body": the first 1 m up, the
+// second above it, its lowest point 1 mm below the first's highest; hulls are shifted
+// sideways so that those two points lie on one vertical (a hull's highest vertex is off
+// its centre), cubes stand centre over centre.
+void narrowPoses(const rigid::WorldModel& model, bool onSurface, std::vector<rigid::BodyState>& Y) {
+  const rigid::Shape& a = model.bodies[0].shape;
+  const rigid::Shape& b = model.bodies[1].shape;
+  const bool hull = a.type == rigid::ShapeType::Mesh;
+  const rigid::Vec3 up = rigid::Vec3::UnitZ();
+  const double overlap = 1e-3;
+  Y[0].q = hull ? rigid::Quat(Eigen::AngleAxisd(0.7, rigid::Vec3(1, 2, 3).normalized())) : rigid::Quat::Identity();
+  Y[1].q = hull ? rigid::Quat(Eigen::AngleAxisd(2.1, rigid::Vec3(-2, 1, 0.5).normalized())) : rigid::Quat::Identity();
+  if (onSurface) {
+    Y[0].X = rigid::Vec3(0, 0, -extremePoint(a, Y[0].q, -up).z() - overlap);
+    Y[1].X = rigid::Vec3(0, 0, 10.0);
+    return;
+  }
+  Y[0].X = rigid::Vec3(0, 0, 1.0);
+  const rigid::Vec3 top = Y[0].X + extremePoint(a, Y[0].q, up);
+  const rigid::Vec3 low = extremePoint(b, Y[1].q, -up);
+  Y[1].X = rigid::Vec3(hull ? top.x() - low.x() : 0.0, hull ? top.y() - low.y() : 0.0, top.z() - low.z() - overlap);
+}
+
+void narrow(benchmark::State& state, const std::string& file, bool onSurface) {
+  const rigid::Scene scene = load(file);
+  rigid::WorldData data = rigid::initialData(scene.model);
+  narrowPoses(scene.model, onSurface, data.Y);
+  // the surface case: the second body takes no part, so the pair is the first's with the floor
+  rigid::CollisionDetector detector(scene.model, {true, !onSurface});
+  std::vector<rigid::Contact> contacts;
+  for (auto _ : state) {
+    detector.detect(data.Y, 0.0, contacts);
+    benchmark::DoNotOptimize(contacts.data());
+  }
+  if (contacts.empty()) state.SkipWithError("the posed pair does not touch");
+  state.counters["ns_per_pair"] = benchmark::Counter(static_cast<double>(state.iterations()),
+                                                     benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["contacts_per_pair"] = static_cast<double>(contacts.size());
+  const rigid::Shape& s = scene.model.bodies[0].shape;
+  state.counters["hull_vertices"] = s.mesh ? static_cast<double>(s.mesh->hull.vertices.size()) : 8.0;
+  state.counters["hull_faces"] = s.mesh ? static_cast<double>(s.mesh->hull.faceCount()) : 6.0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -414,6 +495,17 @@ int main(int argc, char** argv) {
                                  ms)
         ->Unit(benchmark::kMillisecond)
         ->Iterations(1);
+  // the pile of pebbles (reports/mesh_scenes.py's PILE_COUNTS)
+  benchmark::RegisterBenchmark("BM_PileHulls/100", pileWindows, std::string("pile_hulls_100.json"), true)
+      ->Unit(benchmark::kMillisecond)
+      ->Iterations(1);
+  // the narrowphase of one pair: hulls of reports/mesh_scenes.py's HULL_VERTICES, and the cube
+  std::vector<std::string> shapes{"cube"};
+  for (int n : {100, 300, 1000}) shapes.push_back("hull_" + std::to_string(n));
+  for (const std::string& shape : shapes)
+    for (bool onSurface : {true, false})
+      benchmark::RegisterBenchmark(("BM_Narrow/" + shape + (onSurface ? "/surface" : "/body")).c_str(), narrow,
+                                   "narrow_" + shape + ".json", onSurface);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -24,7 +24,10 @@ here is asserted; the targets are printed with PASS or MISS.
    2 s (0.2 s in quick mode), h = 1 ms: ours (BM_Chain, rk4) and MuJoCo's (a chain of
    hinge joints, Euler and RK4) timed round by round, the ratio to MuJoCo's Euler its
    target is judged on; our joints' drift and both engines' energy error.
-6. Writes OUT/performance.md, OUT/performance/*.png and OUT/performance/bench.json.
+6. Convex meshes (issue 42, reports.performance_meshes): the narrowphase's time per pair
+   for hulls of 100-1000 vertices on the floor and on one another, beside the cube's
+   (BM_Narrow), as ratios to it.
+7. Writes OUT/performance.md, OUT/performance/*.png and OUT/performance/bench.json.
 
 Times are CPU times (the machine is shared), medians of repeats.
 
@@ -43,8 +46,8 @@ import time
 
 import numpy as np
 
+from reports import performance_meshes, template
 from reports import scenes as bench_scenes
-from reports import template
 from reports.accuracy import cpu_name
 from reports.provenance import source_state
 from rigidfmu import driver
@@ -813,7 +816,35 @@ def render(r):
     """The report's Markdown from its figures (the dict main writes to bench.json): a
     pure function of them, so that a saved bench.json renders again (load_report)."""
     return template.fill("performance", {**header_values(r), **core_values(r), "mujoco": mujoco_section(r),
-                                         **windows_values(r), **chain_values(r)})
+                                         **windows_values(r), **chain_values(r), **meshes_values(r)})
+
+
+def meshes_values(r):
+    """The convex meshes' section (reports.performance_meshes); a bench.json saved
+    before it was measured renders it as not measured."""
+    narrow = (r.get("meshes") or {}).get("narrow")
+    pile = (r.get("meshes") or {}).get("pile")
+    if not narrow:
+        return {"narrow_repetitions": "–", "hull_radius": "–", "cube_edge": "–",
+                "narrow_table": "Not measured in this run.", "mesh_pile": ""}
+    pairs = ("on the floor", "on a body")
+    head = ["shape", "hull vertices", "hull faces",
+            *(f"{p}: {k}" for p in pairs for k in ("ns per pair", "contact points", "× cube"))]
+    return {"narrow_repetitions": narrow["repetitions"], "hull_radius": f"{narrow['radius_m']:g} m",
+            "cube_edge": f"{narrow['cube_edge_m']:g} m",
+            "narrow_table": table(head, "lrrrrrrrr", performance_meshes.narrow_rows(narrow)),
+            "mesh_pile": mesh_pile_part(pile) if pile else ""}
+
+
+def mesh_pile_part(pile):
+    """The pebbles' pile (performance_meshes.run_mesh_pile)."""
+    head = ["engine", "per simulated second, falling (0–1 s)", "at rest (2–3 s)", "deepest overlap (0–3 s)",
+            "fastest body at 3 s", "asleep at 3 s"]
+    return block("mesh_pile", n=pile["n"], vertices=pile["vertices"],
+                 axes=" × ".join(f"{2e3 * a:g}" for a in pile["axes_m"]), rounds=len(pile["rounds"]),
+                 narrowphase=f"{pile['ours']['fall_narrowphase_share']:.0%}",
+                 narrowphase_rest=f"{pile['ours']['rest_narrowphase_share']:.0%}",
+                 mesh_pile_table=table(head, "lrrrrr", performance_meshes.mesh_pile_rows(pile, fmt_s)))
 
 
 def write_markdown(path, r):
@@ -1151,6 +1182,11 @@ def main(argv=None, prog=None):
         windows_tilts = run_tilts(build, folder, args.quick)
         log("== a chain of hinged links swinging from horizontal (BM_Chain), ours and MuJoCo's interleaved")
         chain = run_chain(build, scenes, folder, args.quick)
+    log("== convex meshes: the narrowphase per pair, beside the cube's (BM_Narrow)")
+    meshes = {"narrow": performance_meshes.run_narrow(build, scenes, args.quick)}
+    log("== convex meshes: a pile of pebbles, ours and MuJoCo's round by round (BM_PileHulls)")
+    with tempfile.TemporaryDirectory() as tmp:
+        meshes["pile"] = performance_meshes.run_mesh_pile(build, scenes, tmp, PEERS_PYTHON, args.quick)
     if peers is None:
         log("MuJoCo: not measured (no .venv-peers; scripts/bench.sh without --quick creates it)")
     accuracy = {"T": T, "omega0": [float(x) for x in omega0], "ours": ours, "mujoco": [], "equal_accuracy": []}
@@ -1173,7 +1209,7 @@ def main(argv=None, prog=None):
               "windows": windows, "windows_interleaved": windows_il, "windows_targets": wrows,
               "windows_checks": wchecks,
               "windows_awake": windows_awake, "windows_wide": windows_wide, "windows_tilts": windows_tilts,
-              "chain": chain, "chain_targets": crows,
+              "chain": chain, "chain_targets": crows, "meshes": meshes,
               "accuracy": accuracy, "targets": rows, "meta": meta}
     fig_dir = out / "performance"
     files = plots(fig_dir, free, piles, peers, windows)
@@ -1220,6 +1256,8 @@ def main(argv=None, prog=None):
     if peers is None:
         log("  MuJoCo: not measured (no .venv-peers): its columns say \"not measured\"")
     log_chain(chain)
+    performance_meshes.log_narrow(meshes["narrow"])
+    performance_meshes.log_mesh_pile(meshes["pile"])
     log(f"wrote {out / 'performance.md'}, {', '.join(str(f) for f in files)} "
         f"({time.perf_counter() - t_start:.0f} s)")
     return 0

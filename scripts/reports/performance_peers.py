@@ -25,9 +25,14 @@ the peers' own venv (.venv-peers, made by scripts/peers_venv.sh) and read back a
   with nstep), and, in separate untimed runs, the energy (kinetic + potential,
   mj_energyPos and mj_energyVel, J) at the start and its largest departure, and the
   tip's position at the end. Generalized coordinates: the joints cannot drift.
+- With --mesh-pile N: pile_hulls_<N>.json (reports.mesh_scenes: the pile with each cube
+  a convex mesh, a pebble read from the same STL as ours) with Euler: the CPU time of
+  its first second (falling, from the start) and of its third (at rest, from the state
+  at 2 s), one run each, and from an untimed run of 3 s the deepest penetration, the
+  most contacts and the fastest body at 3 s.
 
 usage: python -m reports.performance_peers SCENES_DIR OUT.json [--quick] [--T 10] [--dts 1e-2,1e-3]
-                      [--pile-timing N [--at-rest]] [--chain N --T 2]"""
+                      [--pile-timing N [--at-rest]] [--chain N --T 2] [--mesh-pile N]"""
 import argparse
 import copy
 import json
@@ -51,6 +56,24 @@ PILE_MJCF = """<mujoco model="{name}">
 
 BODY = ('    <body pos="{p}" quat="{q}"><freejoint/>'
         '<geom type="box" size="{s}" mass="{m}" friction="{mu} 0.005 0.0001"/></body>')
+
+# The pile of pebbles: one mesh asset, MuJoCo's own convex hull of it (the mesh is convex),
+# each body's frame the file's as ours is (MuJoCo moves the geom to keep the mesh where
+# the file has it; our body frame is the file's moved to the centre of mass, which the
+# pebble's symmetric points put at the file's origin).
+MESH_PILE_MJCF = """<mujoco model="{name}">
+  <compiler meshdir="{meshdir}"/>
+  <option timestep="{dt}" gravity="{g}" integrator="Euler"/>
+  <size memory="{memory}"/>
+  <asset><mesh name="hull" file="{file}"/></asset>
+  <worldbody>
+    <geom name="floor" type="plane" size="{half} {half} 0.1" pos="{floor}" friction="{mu} 0.005 0.0001"/>
+{bodies}
+  </worldbody>
+</mujoco>"""
+
+MESH_BODY = ('    <body pos="{p}" quat="{q}"><freejoint/>'
+             '<geom type="mesh" mesh="hull" mass="{m}" friction="{mu} 0.005 0.0001"/></body>')
 
 FREE_MJCF = """<mujoco>
   <option gravity="0 0 0" timestep="{dt}" integrator="{integrator}"/>
@@ -256,6 +279,45 @@ def pile(scene, integrator, repeats):
     return out
 
 
+def mesh_pile_xml(scene, meshdir):
+    """pile_hulls_<N>.json as MJCF: pile_xml's floor, the bodies' one mesh file."""
+    surface = scene["surfaces"][0]
+    lo, hi = np.array(surface["min"]), np.array(surface["max"])
+    (file,) = {b["shape"]["file"] for b in scene["bodies"]}
+    bodies = [MESH_BODY.format(p=fmt(b["position"]), q=fmt(b.get("orientation", [1, 0, 0, 0])), m=b["mass"],
+                               mu=b.get("staticFriction", 0.6)) for b in scene["bodies"]]
+    centre = 0.5 * (lo + hi)
+    return MESH_PILE_MJCF.format(name=scene["name"], meshdir=meshdir, file=file, dt=scene["solver"]["step"],
+                                 g=fmt(scene["gravity"]), memory=memory_for(len(bodies)),
+                                 half=0.5 * float(max(hi[0] - lo[0], hi[1] - lo[1])),
+                                 floor=fmt([centre[0], centre[1], hi[2]]), mu=surface.get("staticFriction", 0.6),
+                                 bodies="\n".join(bodies))
+
+
+def mesh_pile(scene, meshdir):
+    """The pebbles' pile with Euler: CPU time per simulated second of the first second
+    and of the third (one run each), and from an untimed run of 3 s the deepest
+    penetration (-contact.dist), the most contacts and the fastest body at 3 s."""
+    model = mujoco.MjModel.from_xml_string(mesh_pile_xml(scene, meshdir))
+    dt = model.opt.timestep
+    steps = round(1.0 / dt)
+    data = mujoco.MjData(model)
+    deepest, contacts, at_2s = 0.0, 0, None
+    for k in range(3 * steps):
+        mujoco.mj_step(model, data)
+        if data.ncon:
+            deepest = max(deepest, float(-np.min(data.contact.dist[:data.ncon])))
+            contacts = max(contacts, int(data.ncon))
+        if k + 1 == 2 * steps:
+            at_2s = copy.copy(data)
+    fall = cpu_per_step(model, lambda: mujoco.MjData(model), steps, 1)
+    rest = cpu_per_step(model, lambda: from_state(model, at_2s), steps, 1)
+    return {"engine": f"MuJoCo {mujoco.__version__}", "n": len(scene["bodies"]), "integrator": "Euler", "dt": dt,
+            "fall_s_per_simulated_s": fall / dt, "rest_s_per_simulated_s": rest / dt,
+            "max_penetration_3s_m": deepest, "max_contacts": contacts, "max_speed_3s": fastest(data),
+            "warnings": int(sum(w.number for w in data.warning))}
+
+
 def free_many(scene, dt, repeats):
     model = mujoco.MjModel.from_xml_string(free_xml(scene, "RK4", dt))
 
@@ -295,12 +357,17 @@ def main(argv=None, prog=None):
     p.add_argument("--pile-timing", type=int, help="time pile_<N> once and write only that")
     p.add_argument("--at-rest", action="store_true", help="with --pile-timing: time the third second")
     p.add_argument("--chain", type=int, help="run chain_<N> for --T seconds and write only that")
+    p.add_argument("--mesh-pile", type=int, help="run pile_hulls_<N> (falling, at rest) and write only that")
     args = p.parse_args(argv)
     d = pathlib.Path(args.scenes)
     load = lambda name: json.loads((d / name).read_text())  # noqa: E731
     if args.chain:
         out = {"engine": f"MuJoCo {mujoco.__version__}", "n": args.chain, "T": args.T,
                **chain(load(f"chain_{args.chain}.json"), args.T)}
+        pathlib.Path(args.out).write_text(json.dumps(out, indent=1))
+        return
+    if args.mesh_pile:
+        out = mesh_pile(load(f"pile_hulls_{args.mesh_pile}.json"), str(d.resolve()))
         pathlib.Path(args.out).write_text(json.dumps(out, indent=1))
         return
     if args.pile_timing:

@@ -9,11 +9,13 @@ at the growing height of the cube-root piles. Tumbling bodies are the free bodie
 collisions on: they can collide but, 3 m apart, touch nothing. No scene names a contact
 solver: there is one (the constraint solver). A chain of links hinged end to end
 (issue 41) starts horizontal and swings down under gravity: its joints are rows of the
-same solver, and MuJoCo runs it as a chain of hinges (reports.performance_peers).
+same solver, and MuJoCo runs it as a chain of hinges (reports.performance_peers). The
+convex mesh scenes (hulls of 100-1000 vertices, issue 42) are reports.mesh_scenes'.
 
   python -m reports.scenes DIR    writes DIR/free_<N>.json, DIR/pile_<N>.json,
                                          DIR/pile_wide_<N>.json, DIR/tumbling_<N>.json
-                                         and DIR/chain_<N>.json
+                                         DIR/chain_<N>.json, and the mesh scenes
+                                         (reports.mesh_scenes)
   python -m reports.scenes DIR --tilt A,B
                                          the same with the piles' cubes tilted by another
                                          pattern (TILT's frequencies replaced by A and B):
@@ -148,6 +150,8 @@ def write(directory, tilt=TILT):
         (d / f"tumbling_{n}.json").write_text(json.dumps(tumbling_scene(n)))
         (d / f"driven_{n}.json").write_text(json.dumps(driven_scene(n)))
     (d / f"chain_{CHAIN_LINKS}.json").write_text(json.dumps(chain_scene()))
+    from reports import mesh_scenes  # here: it builds on this module's piles
+    mesh_scenes.write(d)
 
 
 def main(argv):

@@ -1,7 +1,8 @@
 """scripts/bench.sh --quick: the performance report runs and is complete (every method
 and body count, the pile phases, the piles falling and at rest, the chain of hinged
-links, the FMU costs, MuJoCo's ratios when its venv is there, the plots). Times are
-figures: none is asserted, only that each is measured (finite and positive)."""
+links, the FMU costs, MuJoCo's ratios when its venv is there, the convex meshes'
+narrowphase beside the cube's, the plots). Times are figures: none is asserted, only
+that each is measured (finite and positive)."""
 import json
 import math
 import os
@@ -212,16 +213,58 @@ def test_chain_of_hinges_beside_mujoco(quick):
     assert measured(c["ratio"]) and measured(c["ratio_rk4"])
 
 
+def test_convex_mesh_narrowphase_beside_the_cube(quick):
+    """BM_Narrow (issue 42): every hull of the issue's 100-1000 vertices and the cube, on
+    the floor and on a body of its shape: a time per pair, the contact points it gave,
+    and the ratio to the cube's pair of the same kind."""
+    _, _, r = quick
+    narrow = r["meshes"]["narrow"]
+    assert list(narrow["shapes"]) == ["cube", "hull_100", "hull_300", "hull_1000"]
+    for shape, pairs in narrow["shapes"].items():
+        assert set(pairs) == {"surface", "body"}, shape
+        for pair, x in pairs.items():
+            assert measured(x["ns_per_pair"]) and x["contacts_per_pair"] >= 1, (shape, pair)
+            assert math.isclose(x["ratio_to_cube"], x["ns_per_pair"] / narrow["shapes"]["cube"][pair]["ns_per_pair"])
+            assert x["hull_vertices"] == (8 if shape == "cube" else int(shape.split("_")[1])), (shape, pair)
+
+
+def test_pile_of_convex_meshes_beside_mujoco(quick):
+    """BM_PileHulls (issue 42): the pile of 100 pebbles, convex meshes, falling and at rest,
+    every step taken; MuJoCo's on the same STL beside it, round by round, when its venv
+    is there (quick: one round)."""
+    _, _, r = quick
+    pile = r["meshes"]["pile"]
+    assert pile["n"] == 100 and pile["vertices"] == 100 and len(pile["rounds"]) == 1
+    ours = pile["ours"]
+    assert ours["steps_ok"] == ours["steps"], "the pile of pebbles: a step failed"
+    for key in ("fall_s_per_simulated_s", "rest_s_per_simulated_s", "fall_narrowphase_share"):
+        assert measured(ours[key]), key
+    assert math.isfinite(ours["max_overlap_state_m"]) and 0 <= ours["asleep_3s"] <= 100
+    if not HAVE_PEERS:
+        assert pile["mujoco"] is None and pile["ratio_fall"] is None
+        return
+    m = pile["mujoco"]
+    assert m["engine"].startswith("MuJoCo") and m["warnings"] == 0
+    assert measured(m["fall_s_per_simulated_s"]) and measured(m["rest_s_per_simulated_s"])
+    assert measured(pile["ratio_fall"]) and measured(pile["ratio_rest"])
+
+
 def test_markdown_and_plots(quick):
     proc, out, r = quick
     text = (out / "performance.md").read_text()
     for section in ("## Targets", "## Core: free bodies", "## Core: piles of cubes",
                     "## Through FMI", "## Beside MuJoCo", "## Piles over 3 s: falling and at rest",
-                    "## A chain of hinged links", "## How it is measured"):
+                    "## A chain of hinged links", "## Convex meshes", "## How it is measured"):
         assert section in text
     chain = text[text.index("## A chain of hinged links"):text.index("## How it is measured")]
     for label, _, _ in r["chain_targets"]:
         assert f"| {label} |" in chain
+    meshes = text[text.index("## Convex meshes"):text.index("## How it is measured")]
+    for shape, pairs in r["meshes"]["narrow"]["shapes"].items():
+        assert f"{pairs['body']['ratio_to_cube']:.2f} |" in meshes, shape
+    assert "| hull of 1000 points | 1000 | 1996 |" in meshes
+    assert "**A pile of 100 convex meshes**" in meshes and "| rigidfmu (rk4) |" in meshes
+    assert ("| ratio ours/theirs (median of the rounds) |" in meshes) == HAVE_PEERS
     assert "| rigidfmu rk4 | 1 ms |" in chain and "| ours, 0–0.2 s |" in chain
     assert ("**Interleaved.**" in chain) == HAVE_PEERS and ("not measured" in chain) != HAVE_PEERS
     # the piles' section: its targets, a row per pile, the stages falling and at rest,

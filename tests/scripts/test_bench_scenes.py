@@ -4,6 +4,7 @@ the growth it measures from the pile of 100 is that of N at equal height (bench.
 import json
 
 import pytest
+from reports import mesh_scenes
 from reports import scenes as bench
 
 
@@ -60,3 +61,26 @@ def test_tumbling_bodies_are_the_free_ones_with_collisions_on():
     xy = [b["position"] for b in tumbling["bodies"]]
     nearest = min(((a[0] - b[0]) ** 2 + (a[1] - b[1]) ** 2) ** 0.5 for i, a in enumerate(xy) for b in xy[i + 1:])
     assert nearest >= 3.0 > 2 * (0.15 ** 2 + 0.1 ** 2 + 0.05 ** 2) ** 0.5
+
+
+def test_mesh_scenes_hulls_have_the_issues_vertex_counts(tmp_path):
+    """Every point of a hull scene's lattice is a vertex of its hull, so a hull of N points
+    has N vertices as the core reads it (FILE.mesh.json); the pebble's too."""
+    mesh_scenes.write(tmp_path)
+    for n in mesh_scenes.HULL_VERTICES:
+        written = json.loads((tmp_path / f"hull_{n}.stl.mesh.json").read_text())
+        assert len(written["hull"]["vertices"]) == n
+        scene = json.loads((tmp_path / f"narrow_hull_{n}.json").read_text())
+        assert [b["shape"] for b in scene["bodies"]] == [{"type": "mesh", "file": f"hull_{n}.stl"}] * 2
+    pebble = json.loads((tmp_path / "pebble.stl.mesh.json").read_text())
+    assert len(pebble["hull"]["vertices"]) == mesh_scenes.PILE_HULL_VERTICES
+
+
+def test_pile_of_pebbles_is_the_pile_of_cubes_with_meshes_in_their_places(tmp_path):
+    pebbles = mesh_scenes.pile_hulls_scene(100, "pebble.stl", 0.25)
+    cubes = bench.pile_scene(100)
+    assert [b["position"] for b in pebbles["bodies"]] == [b["position"] for b in cubes["bodies"]]
+    assert {str(_without(b, "name", "position", "orientation", "shape", "mass")) for b in pebbles["bodies"]} == \
+        {str(_without(cubes["bodies"][0], "name", "position", "orientation", "shape", "mass"))}
+    assert pebbles["surfaces"] == cubes["surfaces"] and pebbles["solver"]["step"] == cubes["solver"]["step"]
+    assert all(b["shape"] == {"type": "mesh", "file": "pebble.stl"} for b in pebbles["bodies"])

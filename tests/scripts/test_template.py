@@ -99,6 +99,7 @@ def without_mujoco(r):
     r.update(peers=None, interleaved=None, windows_interleaved=None)
     r["accuracy"].update(mujoco=[], equal_accuracy=[])
     r["chain"].update(mujoco=None, ratio=None, ratio_rk4=None, rounds=[])
+    r["meshes"]["pile"].update(mujoco=None, ratio_fall=None, ratio_rest=None)
 
 
 def quick(r):
@@ -131,6 +132,7 @@ def test_every_part_of_the_performance_template_is_written_by_some_run(saved, mo
         assert not re.search(r"\{\w+\}|<!-- part", texts[name]), name
     assert written == set(parts((template.FOLDER / "performance.md").read_text(encoding="utf-8")))
     assert texts["without MuJoCo"].count("MuJoCo was not measured in this run") == 3
+    assert "| MuJoCo | not measured | not measured |" in texts["without MuJoCo"]  # the pile of pebbles
     assert "| 1000 | not measured | not measured |" in texts["without MuJoCo"]
     assert "**Equal height**" not in texts["quick"] and "the full run times the pile of 1000 so" in texts["quick"]
     assert "A step failed in the piles of [100]: their times" in texts["a step failed"]

@@ -145,6 +145,28 @@ def test_each_scene_gets_the_binary_of_its_modules(fmu_of, make, mask):
         shutil.rmtree(unzip, ignore_errors=True)
 
 
+def test_a_mesh_or_compound_scene_gets_the_binary_with_the_meshes_module(fmu_of):
+    """Meshes come in one combination, with every module (CMakeLists.txt): 31."""
+    compound = {"type": "compound", "parts": [{"shape": {"type": "sphere", "radius": 0.1}},
+                                               {"shape": {"type": "sphere", "radius": 0.1}, "position": [0.3, 0, 0]}]}
+    fmu = fmu_of(scenes.scene("CompoundOnly", [scenes.body("pair", shape=compound)]))
+    unzip = extract(str(fmu), unzipdir=tempfile.mkdtemp(prefix="rigid-mask-"))
+    try:
+        assert sha(binary_of(fmu, unzip)) == sha(BUILD / f"rigidfmu_fmi2_{expected_mask(31)}.so")
+    finally:
+        shutil.rmtree(unzip, ignore_errors=True)
+
+
+def test_only_the_binaries_with_meshes_carry_the_mesh_reader_and_solid_mass():
+    """The mesh files' reading and the solids' mass properties (src/mesh_file.cpp,
+    src/solid_mass.cpp, src/compound.cpp) are in the binaries of mask bit 16 only; the
+    others link the refusal of meshes and compounds (src/mesh_file_absent.cpp)."""
+    for mask in built_masks():
+        symbols = subprocess.run(["nm", "-C", str(BUILD / f"rigidfmu_fmi2_{mask}.so")], capture_output=True,
+                                 text=True, check=True).stdout
+        assert ("rigid::meshSolidMass(" in symbols) == bool(mask & 16), mask
+
+
 def test_only_the_binaries_with_joints_carry_the_joint_solver():
     """The joints' rows (src/joint_rows.cpp) are in the binaries of mask bit 8 only; the
     others read a joint scene only to refuse it."""

@@ -46,7 +46,6 @@ constexpr int kDiscVertices = 8;  // the octagon drawn on a cylinder's end disc
 // m: how far libccd's EPA depth may exceed a face axis's overlap before its answer is
 // taken for a wrong one (its own tolerance is 1e-6).
 constexpr double kGjkSlack = 1e-6;
-constexpr double kPi = 3.14159265358979323846;
 
 // Geometry of one collision object in the frame FCL sees it: centre p and rotation
 // R (shape frame -> world), refreshed by detect().
@@ -90,9 +89,7 @@ double supportExtent(const Geo& g, const Vec3& d) {
     case ShapeType::Capsule: return g.halfLength * std::abs(g.R.col(2).dot(d)) + g.radius * d.norm();
     case ShapeType::Mesh: {
       const Vec3 local = g.R.transpose() * d;
-      double most = -std::numeric_limits<double>::infinity();
-      for (const Vec3& v : g.hull->vertices) most = std::max(most, v.dot(local));
-      return most;
+      return g.hull->vertices[supportVertex(*g.hull, local)].dot(local);
     }
     case ShapeType::Compound: break;  // (a slot per part: no Geo is a compound)
   }
@@ -113,11 +110,8 @@ inline Vec3 aabbHalfExtent(const Geo& g, const Mat3& R) {
       return e;
     }
     case ShapeType::Capsule: return g.halfLength * R.col(2).cwiseAbs() + Vec3::Constant(g.radius);
-    case ShapeType::Mesh: {  // about the centre of mass, which the hull need not be symmetric about
-      Vec3 e = Vec3::Zero();
-      for (const Vec3& v : g.hull->vertices) e = e.cwiseMax((R * v).cwiseAbs());
-      return e;
-    }
+    case ShapeType::Mesh:  // the hull's bounding box turned, about the centre of mass (not its centre)
+      return (R * g.hull->boxCentre).cwiseAbs() + R.cwiseAbs() * g.hull->boxHalf;
     case ShapeType::Compound: break;  // (a slot per part: no Geo is a compound)
   }
   return Vec3::Zero();
@@ -144,13 +138,7 @@ Vec3 supportPoint(const Geo& g, const Vec3& d) {
       const Vec3 across = dn - du * u;
       return across.norm() > 1e-12 ? Vec3(end + g.radius * across.normalized()) : end;
     }
-    case ShapeType::Mesh: {
-      const Vec3 local = g.R.transpose() * d;
-      const Vec3* best = &g.hull->vertices.front();
-      for (const Vec3& v : g.hull->vertices)
-        if (v.dot(local) > best->dot(local)) best = &v;
-      return g.p + g.R * *best;
-    }
+    case ShapeType::Mesh: return g.p + g.R * g.hull->vertices[supportVertex(*g.hull, g.R.transpose() * d)];
     case ShapeType::Compound: break;  // (a slot per part: no Geo is a compound)
   }
   return g.p;
@@ -245,12 +233,15 @@ double facingFace(const Geo& g, const Vec3& dir, int& face) {
   if (g.type == ShapeType::Box) {
     for (int k = 0; k < 3; ++k)
       if (std::abs(g.R.col(k).dot(dir)) > align) align = std::abs(g.R.col(k).dot(dir)), face = k;
-  } else if (g.type == ShapeType::Mesh) {
+  } else if (g.type == ShapeType::Mesh) {  // among the faces around the vertex farthest along dir
     const Vec3 local = g.R.transpose() * dir;
     const ConvexHull& h = *g.hull;
-    for (int f = 0; f < h.faceCount(); ++f)
+    const int v = supportVertex(h, local);
+    for (int k = h.vertexFaceStart[v]; k < h.vertexFaceStart[v + 1]; ++k) {
+      const int f = h.vertexFace[k];
       if (h.faceSize(f) <= kMaxFaceEdges && h.faceNormal[f].dot(local) > align)
         align = h.faceNormal[f].dot(local), face = f;
+    }
   }
   return align;
 }
@@ -316,10 +307,10 @@ int incidentRoundFeature(const Geo& inc, const Vec3& m, Vec3* pts) {
     const Vec3 centre = inc.p + u * (c > 0.0 ? -inc.halfLength : inc.halfLength);
     const Vec3 w1 = down.norm() > 1e-9 ? Vec3(down.normalized()) : anyPerpendicular(u);
     const Vec3 w2 = u.cross(w1);
-    for (int i = 0; i < kDiscVertices; ++i) {
-      const double th = i * 2.0 * kPi / kDiscVertices;
-      pts[i] = centre + inc.radius * (std::cos(th) * w1 + std::sin(th) * w2);
-    }
+    // (cos, sin) of i 45 deg as constants: the C runtimes' cos and sin differ in the last bit
+    constexpr double h = 0.70710678118654752;
+    constexpr double ring[kDiscVertices][2] = {{1, 0}, {h, h}, {0, 1}, {-h, h}, {-1, 0}, {-h, -h}, {0, -1}, {h, -h}};
+    for (int i = 0; i < kDiscVertices; ++i) pts[i] = centre + inc.radius * (ring[i][0] * w1 + ring[i][1] * w2);
     return kDiscVertices;
   }
   if (std::abs(c) <= kSideAlign) {
@@ -342,9 +333,10 @@ int incidentRoundFeature(const Geo& inc, const Vec3& m, Vec3* pts) {
 int incidentHullFace(const Geo& inc, const Vec3& m, Vec3* pts) {
   const Vec3 local = inc.R.transpose() * m;
   const ConvexHull& h = *inc.hull;
-  int best = 0;
-  for (int f = 1; f < h.faceCount(); ++f)
-    if (h.faceNormal[f].dot(local) < h.faceNormal[best].dot(local)) best = f;
+  const int v = supportVertex(h, -local);  // the face is among those around the deepest vertex
+  int best = h.vertexFace[h.vertexFaceStart[v]];
+  for (int k = h.vertexFaceStart[v]; k < h.vertexFaceStart[v + 1]; ++k)
+    if (h.faceNormal[h.vertexFace[k]].dot(local) < h.faceNormal[best].dot(local)) best = h.vertexFace[k];
   const int n = h.faceSize(best);
   const int count = std::min(n, kMaxFaceEdges);
   for (int i = 0; i < count; ++i) pts[i] = inc.p + inc.R * h.faceVertexAt(best, i * n / count);
@@ -414,6 +406,23 @@ int clipToFace(const ReferenceFace& f, int np, Vec3*& pts, Vec3* spare) {
   return np;
 }
 
+// asinh t from +, -, *, / and sqrt alone, as log(|t| + sqrt(t^2 + 1)) with the
+// logarithm's series: the C runtimes' asinh differ in the last bit (glibc's against
+// MinGW's), and a tumbling body's twist friction carries that difference into the
+// trajectory, which then differs between linux64 and win64. frexp is exact everywhere.
+double portableAsinh(double t) {
+  const double x = std::abs(t) + std::sqrt(t * t + 1.0);  // >= 1
+  int e = 0;
+  double m = std::frexp(x, &e);                        // x = m 2^e, m in [0.5, 1)
+  if (m < 0.70710678118654752) m *= 2.0, --e;          // m in [1/sqrt 2, sqrt 2)
+  const double z = (m - 1.0) / (m + 1.0), z2 = z * z;  // |z| < 0.1716
+  // log m = 2 (z + z^3/3 + z^5/5 + ...): 12 terms leave < 1e-18
+  double sum = 0.0;
+  for (int k = 23; k >= 1; k -= 2) sum = sum * z2 + 1.0 / k;
+  const double log = e * 0.69314718055994530942 + 2.0 * z * sum;
+  return t < 0.0 ? -log : log;
+}
+
 // The mean distance (m) of a convex polygon's area from its area centroid, the
 // polygon's np vertices in order (projected along the normal m); for 2 points a
 // quarter of the segment, for fewer 0. Each triangle of the fan from the centroid
@@ -432,7 +441,7 @@ double meanDistanceFromCentroid(const Vec3* pts, int np, const Vec3& m) {
   }
   if (!(std::abs(area) > 1e-18)) return 0.0;
   centroid /= area;
-  auto primitive = [](double t) { return t * std::sqrt(1.0 + t * t) + std::asinh(t); };
+  auto primitive = [](double t) { return t * std::sqrt(1.0 + t * t) + portableAsinh(t); };
   double moment = 0.0;  // integral of r over the area
   for (int i = 0; i < np; ++i) {
     Vec3 p = pts[i] - centroid, q = pts[(i + 1) % np] - centroid;

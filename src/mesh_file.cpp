@@ -206,6 +206,7 @@ std::shared_ptr<const SurfaceMesh> readSurfaceMesh(const std::string& folder, co
   for (const std::array<int, 3>& t : triangles) {
     Vec3 centre;
     m->prisms.push_back(prism(vertices[t[0]], vertices[t[1]], vertices[t[2]], thickness, centre));
+    linkHull(m->prisms.back());
     m->centres.push_back(centre);
     m->fronts.push_back(m->prisms.back().faceNormal[0]);
     m->triangles.insert(m->triangles.end(), t.begin(), t.end());
@@ -238,6 +239,7 @@ std::shared_ptr<const MeshShape> readMeshShape(const std::string& folder, const 
     refuse(field, file, "its hull: " + fault);
   m->hullVolume = meshSolidMass(m->hull.vertices, hullFaces).volume;
   measureHull(*m);
+  linkHull(m->hull);
   m->vertices = std::move(vertices);
   for (const auto& t : triangles) m->triangles.insert(m->triangles.end(), t.begin(), t.end());
   if (m->hullVolume > (1.0 + kHullExcess) * m->volume) {

@@ -18,11 +18,24 @@ struct ConvexHull {
   std::vector<int> faceVertex;     // indices into vertices
   std::vector<Vec3> faceNormal;    // unit, outward
   std::vector<double> faceOffset;  // m: the plane is normal . x = offset
+  // Each vertex's neighbours along the edges, and the faces around it, so that the
+  // vertex farthest along a direction is found by walking uphill (linkHull).
+  std::vector<int> neighbourStart, neighbour;
+  std::vector<int> vertexFaceStart, vertexFace;
+  Vec3 boxCentre = Vec3::Zero(), boxHalf = Vec3::Zero();  // m, the vertices' bounding box
 
   int faceCount() const { return static_cast<int>(faceNormal.size()); }
   int faceSize(int f) const { return faceStart[f + 1] - faceStart[f]; }
   const Vec3& faceVertexAt(int f, int k) const { return vertices[faceVertex[faceStart[f] + k]]; }
 };
+
+// Fills a hull's neighbours, faces around each vertex and bounding box from its faces.
+void linkHull(ConvexHull& hull);
+
+// The index of a vertex of the hull farthest along `direction` (hull frame): walks from
+// vertex to neighbouring vertex while the next is farther, which on a convex polytope
+// ends at the farthest (a few dozen steps for a thousand vertices, not a thousand).
+int supportVertex(const ConvexHull& hull, const Vec3& direction);
 
 struct MeshShape {
   std::string file;           // as the scene names it, relative to the scene's folder

@@ -40,10 +40,19 @@ def pytest_sessionstart(session):
         bring_trees_up_to_date()
 
 
-def build_fmu(scene: dict, fmi: int = 2, files: dict | None = None) -> pathlib.Path:
-    """The FMU of a scene (a dict in the scene format), built once per content and FMI
-    version (2 or 3). `files`: {relative path: bytes} written beside the scene (the mesh
-    files it names)."""
+def scene_and_files(path: pathlib.Path) -> tuple[dict, dict]:
+    """A scene file (an example's) and the mesh files it names, {path: bytes}."""
+    from rigidfmu import meshes
+    scene = json.loads(path.read_text())
+    return scene, {r.file: (path.parent / r.file).read_bytes() for r in meshes.mesh_references(scene)}
+
+
+def build_fmu(scene: dict | pathlib.Path, fmi: int = 2, files: dict | None = None) -> pathlib.Path:
+    """The FMU of a scene (a dict in the scene format, or a scene file with the mesh files
+    beside it), built once per content and FMI version (2 or 3). `files`: {relative path:
+    bytes} written beside a dict's scene (the mesh files it names)."""
+    if isinstance(scene, pathlib.Path):
+        scene, files = scene_and_files(scene)
     text = json.dumps(scene, indent=1, sort_keys=True)
     digest = hashlib.sha256(text.encode())
     for name, data in sorted((files or {}).items()):

@@ -25,7 +25,7 @@ EXAMPLES = sorted(p.name for p in (ROOT / "scripts" / "scenes").glob("*.json"))
 
 
 def example(name):
-    return json.loads((ROOT / "scripts" / "scenes" / name).read_text())
+    return ROOT / "scripts" / "scenes" / name  # (with the mesh files beside it)
 
 
 class Logged:

@@ -4,7 +4,6 @@ points), a loop of doStep(k h, h), one that sums t += h, one that steps by (t + 
 They differ in the last bits, and a resting contact would make those bits into
 different forces and positions. The FMU keeps its own time on its grid
 (fmu/communication_clock.h), so all four give the same outputs, bitwise, FMI 2 and 3."""
-import json
 import os
 import pathlib
 
@@ -85,7 +84,7 @@ def run_simulate_fmu(fmu):
 
 def scenes():
     examples = [] if SANITIZED else EXAMPLES
-    return [(name, json.loads((ROOT / "scripts" / "scenes" / name).read_text())) for name in examples] + [
+    return [(name, ROOT / "scripts" / "scenes" / name) for name in examples] + [
         ("resting", RESTING)]
 
 

@@ -1,6 +1,5 @@
 """Every FMU built from the repository's scenes passes fmpy's validation, and the
 modelDescription.xml agrees with the binary it ships with."""
-import json
 import pathlib
 
 import numpy as np
@@ -19,7 +18,7 @@ TEST_SCENES = {"projectile": scenes.projectile(), "spin": scenes.free_spin(),
 
 @pytest.mark.parametrize("scene_file", REPO_SCENES, ids=[p.stem for p in REPO_SCENES])
 def test_repository_scene_fmu_validates(scene_file, fmu_of):
-    fmu = fmu_of(json.loads(scene_file.read_text()))
+    fmu = fmu_of(scene_file)
     assert validate_fmu(str(fmu)) == []
 
 

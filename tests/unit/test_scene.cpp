@@ -246,8 +246,9 @@ TEST(Scene, DuplicateBodyName) {
 }
 
 TEST(Scene, ShapeTypeUnknown) {
-  EXPECT_SCENE_ERROR(sceneWith("", "", R"({"type": "cone", "radius": 0.1})"),
-                     "bodies[0].shape.type: must be one of sphere, box, cylinder, capsule, mesh, compound, got \"cone\"");
+  EXPECT_SCENE_ERROR(
+      sceneWith("", "", R"({"type": "cone", "radius": 0.1})"),
+      "bodies[0].shape.type: must be one of sphere, box, cylinder, capsule, mesh, compound, got \"cone\"");
 }
 
 TEST(Scene, SphereRadiusNotPositive) {

@@ -137,7 +137,7 @@ def escaped(path):
                 ids=lambda p: f"{p[0].removesuffix('.json')}-fmi{p[1]}")
 def unpacked(request, fmu_of, tmp_path_factory):
     scene, fmi = request.param
-    fmu = fmu_of(json.loads((ROOT / "scripts" / "scenes" / scene).read_text()), fmi=fmi)
+    fmu = fmu_of(ROOT / "scripts" / "scenes" / scene, fmi=fmi)
     return Unpacked(fmu, tmp_path_factory.mktemp(f"{scene.removesuffix('.json')}-fmi{fmi}"), fmi)
 
 

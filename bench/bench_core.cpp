@@ -26,8 +26,11 @@
 //     two axes, over joints and steps), the energy (kinetic + potential, J) at the start
 //     and its largest departure, and the tip's position at the end.
 //   BM_PileHulls/<N>: BM_PileWindows on pile_hulls_<N>.json (reports/mesh_scenes.py): the
-//     pile of N cubes with each cube a convex mesh, a pebble of 100 hull vertices; the
-//     overlap between two pebbles is the detector's contact depth.
+//     pile of N cubes with each cube a convex mesh, a pebble of 100 hull vertices, falling
+//     into a bin (a static mesh surface, an open box); the overlap between two pebbles is
+//     the detector's contact depth. With the bin: the pebbles inside it at 3 s
+//     (inside_3s) and the farthest hull vertex beyond its walls and below its floor
+//     over 0-3 s (max_beyond_wall_m, max_below_floor_m).
 //   BM_Narrow/<shape>/<pair>: the narrowphase of one pair (issue 42): CollisionDetector::
 //     detect on narrow_<shape>.json (reports/mesh_scenes.py: two bodies of one shape, a
 //     hull of N vertices or the cube beside them, and a floor), posed by narrowPoses:
@@ -163,6 +166,36 @@ double deepestOverlapOfState(const rigid::Scene& scene, const rigid::WorldData& 
   return deepest;
 }
 
+// The pile's bin (pile_hulls_<N>.json: its first surface a mesh, an open box): the
+// bodies whose centre is inside the box its triangles bound (in x and y, above its
+// floor: open at the top), and how far the farthest hull vertex lies beyond a wall and
+// below the floor (m). Zeros when the first surface is not a mesh.
+struct BinCheck {
+  double inside = 0.0, wall = 0.0, floor = 0.0;
+};
+BinCheck binCheck(const rigid::Scene& scene, const rigid::WorldData& data) {
+  BinCheck out;
+  if (scene.model.surfaces.empty() || !scene.model.surfaces[0].mesh) return out;
+  const rigid::Vec3 lo = scene.model.surfaces[0].min, hi = scene.model.surfaces[0].max;
+  for (size_t i = 0; i < data.Y.size(); ++i) {
+    const rigid::Vec3& X = data.Y[i].X;
+    if (X.x() > lo.x() && X.x() < hi.x() && X.y() > lo.y() && X.y() < hi.y() && X.z() > lo.z()) out.inside += 1.0;
+    for (const rigid::Vec3& p : shapePoints(scene.model.bodies[i].shape)) {
+      const rigid::Vec3 w = X + data.aux[i].R * p;
+      out.wall = std::max({out.wall, lo.x() - w.x(), w.x() - hi.x(), lo.y() - w.y(), w.y() - hi.y()});
+      out.floor = std::max(out.floor, lo.z() - w.z());
+    }
+  }
+  return out;
+}
+
+void binCounters(benchmark::State& state, const rigid::Scene& scene, const BinCheck& bin) {
+  if (scene.model.surfaces.empty() || !scene.model.surfaces[0].mesh) return;
+  state.counters["inside_3s"] = bin.inside;
+  state.counters["max_beyond_wall_m"] = bin.wall;
+  state.counters["max_below_floor_m"] = bin.floor;
+}
+
 void pile(benchmark::State& state, int n) {
   const rigid::Scene scene = load("pile_" + std::to_string(n) + ".json");
   const double h = scene.model.maxStep;
@@ -274,6 +307,7 @@ void pileWindows(benchmark::State& state, const std::string& file, bool sleep) {
   const int steps = 3 * perSecond;
   Window fall, rest;
   double deepest = 0.0, deepestAtRest = 0.0, fastest1 = 0.0, fastest3 = 0.0, asleep3 = 0.0;
+  BinCheck bin;  // the bin's (BM_PileHulls): inside at 3 s, farthest out over 0-3 s
   long ok = 0;
   rigid::CollisionDetector probe(scene.model, std::vector<bool>(scene.model.bodies.size(), true));
   std::vector<rigid::Contact> probed;
@@ -307,6 +341,8 @@ void pileWindows(benchmark::State& state, const std::string& file, bool sleep) {
       if (window == &rest) deepestAtRest = std::max(deepestAtRest, overlap);
       if (k + 1 == perSecond) fastest1 = std::max(fastest1, fastest(data));
       if (k + 1 == steps) fastest3 = std::max(fastest3, fastest(data)), asleep3 = data.sleep.sleeping;
+      const BinCheck now = binCheck(scene, data);
+      bin = {now.inside, std::max(bin.wall, now.wall), std::max(bin.floor, now.floor)};
       if (k + 1 < perSecond) state.ResumeTiming(), timing = true;
     }
     if (!timing) state.ResumeTiming();
@@ -321,6 +357,7 @@ void pileWindows(benchmark::State& state, const std::string& file, bool sleep) {
   state.counters["max_speed_1s_mps"] = fastest1;
   state.counters["max_speed_3s_mps"] = fastest3;
   state.counters["asleep_3s"] = asleep3;
+  binCounters(state, scene, bin);
 }
 
 // A joint's anchor on body `i` (-1: the world, whose frame is the world frame), in the

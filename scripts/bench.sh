@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/bench.sh [--quick] [--out DIR] [--chain-only]
+# scripts/bench.sh [--quick] [--out DIR] [--chain-only | --meshes-only]
 # The performance report (`scripts/bench.sh`): builds the core and its Google Benchmark
 # (rigid-bench-core) like build_fmu.sh (in build/, or $RIGIDFMU_BUILD), makes sure the
 # peers' venv (.venv-peers, MuJoCo) is there, then runs the core, FMU and MuJoCo
@@ -8,6 +8,8 @@
 # MuJoCo only if .venv-peers already exists, since installing it is slow).
 # --chain-only: only the chain of hinged links beside MuJoCo (2 s, 5 interleaved rounds;
 # with --quick 0.2 s, one), its figures printed and no report written.
+# --meshes-only: only the convex meshes (the narrowphase per pair, the pile of pebbles in
+# its bin beside MuJoCo), rendered into the report from OUT/performance/bench.json.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 [ -n "${RIGIDFMU_SKIP_SETUP:-}" ] || "$root/scripts/setup.sh"

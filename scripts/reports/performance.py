@@ -26,12 +26,14 @@ here is asserted; the targets are printed with PASS or MISS.
    target is judged on; our joints' drift and both engines' energy error.
 6. Convex meshes (issue 42, reports.performance_meshes): the narrowphase's time per pair
    for hulls of 100-1000 vertices on the floor and on one another, beside the cube's
-   (BM_Narrow), as ratios to it.
+   (BM_Narrow), as ratios to it; a pile of 100 pebbles falling into a mesh bin beside
+   MuJoCo (BM_PileHulls). --meshes-only runs this part alone and renders the report
+   again from OUT/performance/bench.json with its figures replaced (and its date noted).
 7. Writes OUT/performance.md, OUT/performance/*.png and OUT/performance/bench.json.
 
 Times are CPU times (the machine is shared), medians of repeats.
 
-usage: scripts/bench.sh [--quick] [--out DIR] [--build BUILD_DIR] [--chain-only]"""
+usage: scripts/bench.sh [--quick] [--out DIR] [--build BUILD_DIR] [--chain-only | --meshes-only]"""
 import argparse
 import json
 import math
@@ -824,27 +826,35 @@ def meshes_values(r):
     before it was measured renders it as not measured."""
     narrow = (r.get("meshes") or {}).get("narrow")
     pile = (r.get("meshes") or {}).get("pile")
+    again = r["meta"].get("meshes_date")
+    note = (f"*Measured again on {again}, on its own (`scripts/bench.sh --meshes-only`), on a shared machine.* "
+            if again else "")
     if not narrow:
-        return {"narrow_repetitions": "–", "hull_radius": "–", "cube_edge": "–",
+        return {"narrow_repetitions": "–", "hull_radius": "–", "cube_edge": "–", "meshes_note": note,
                 "narrow_table": "Not measured in this run.", "mesh_pile": ""}
     pairs = ("on the floor", "on a body")
     head = ["shape", "hull vertices", "hull faces",
             *(f"{p}: {k}" for p in pairs for k in ("ns per pair", "contact points", "× cube"))]
     return {"narrow_repetitions": narrow["repetitions"], "hull_radius": f"{narrow['radius_m']:g} m",
-            "cube_edge": f"{narrow['cube_edge_m']:g} m",
+            "cube_edge": f"{narrow['cube_edge_m']:g} m", "meshes_note": note,
             "narrow_table": table(head, "lrrrrrrrr", performance_meshes.narrow_rows(narrow)),
-            "mesh_pile": mesh_pile_part(pile) if pile else ""}
+            # a bench.json saved before the pile fell into the bin renders no pile
+            "mesh_pile": mesh_pile_part(pile) if pile and "bin" in pile else ""}
 
 
 def mesh_pile_part(pile):
     """The pebbles' pile (performance_meshes.run_mesh_pile)."""
     head = ["engine", "per simulated second, falling (0–1 s)", "at rest (2–3 s)", "deepest overlap (0–3 s)",
-            "fastest body at 3 s", "asleep at 3 s"]
+            "fastest body at 3 s", "asleep at 3 s", "inside the bin at 3 s"]
+    o, box = pile["ours"], pile["bin"]
     return block("mesh_pile", n=pile["n"], vertices=pile["vertices"],
                  axes=" × ".join(f"{2e3 * a:g}" for a in pile["axes_m"]), rounds=len(pile["rounds"]),
-                 narrowphase=f"{pile['ours']['fall_narrowphase_share']:.0%}",
-                 narrowphase_rest=f"{pile['ours']['rest_narrowphase_share']:.0%}",
-                 mesh_pile_table=table(head, "lrrrrr", performance_meshes.mesh_pile_rows(pile, fmt_s)))
+                 narrowphase=f"{o['fall_narrowphase_share']:.0%}",
+                 narrowphase_rest=f"{o['rest_narrowphase_share']:.0%}",
+                 bin_size=" × ".join(f"{a:g}" for a in box["size_m"]), bin_cells=box["cells"],
+                 bin_thickness=f"{box['thickness_m']:g}", beyond_wall=f"{o['max_beyond_wall_m'] * 1e3:.2f} mm",
+                 below_floor=f"{o['max_below_floor_m'] * 1e3:.2f} mm",
+                 mesh_pile_table=table(head, "lrrrrrr", performance_meshes.mesh_pile_rows(pile, fmt_s)))
 
 
 def write_markdown(path, r):
@@ -1119,6 +1129,34 @@ def log_chain(chain):
             f"({m['tip_m'][0]:.4f}, {m['tip_m'][1]:.4f}) m")
 
 
+def run_meshes(build, scenes, quick):
+    """The convex meshes' part (6.): the narrowphase per pair and the pile of pebbles."""
+    log("== convex meshes: the narrowphase per pair, beside the cube's (BM_Narrow)")
+    meshes = {"narrow": performance_meshes.run_narrow(build, scenes, quick)}
+    log("== convex meshes: a pile of pebbles in a bin, ours and MuJoCo's round by round (BM_PileHulls)")
+    with tempfile.TemporaryDirectory() as tmp:
+        meshes["pile"] = performance_meshes.run_mesh_pile(build, scenes, tmp, PEERS_PYTHON, quick)
+    return meshes
+
+
+def meshes_only(build, scenes, out, quick, t_start):
+    """--meshes-only: the convex meshes run again, their figures put in place of those
+    OUT/performance/bench.json holds, and the report rendered again from it (the other
+    sections' figures, plots and date as they were; this section's date noted)."""
+    saved = out / "performance" / "bench.json"
+    if not saved.exists():
+        raise ReportError(f"report performance --meshes-only: no {saved} (run scripts/bench.sh once without it)")
+    r = load_report(saved)
+    r["meshes"] = run_meshes(build, scenes, quick)
+    r["meta"]["meshes_date"] = time.strftime("%Y-%m-%d %H:%M %Z")
+    saved.write_text(json.dumps(r, indent=1, default=float))
+    write_markdown(out / "performance.md", r)
+    performance_meshes.log_narrow(r["meshes"]["narrow"])
+    performance_meshes.log_mesh_pile(r["meshes"]["pile"])
+    log(f"wrote {out / 'performance.md'}, {saved} ({time.perf_counter() - t_start:.0f} s)")
+    return 0
+
+
 def main(argv=None, prog=None):
     p = argparse.ArgumentParser(prog=prog, description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--quick", action="store_true", help="short runs (for the test suite)")
@@ -1127,6 +1165,8 @@ def main(argv=None, prog=None):
     p.add_argument("--build", default=os.environ.get("RIGIDFMU_BUILD", str(ROOT / "build")))
     p.add_argument("--chain-only", action="store_true",
                    help="only the chain of hinged links (5.): its figures and targets printed, no report written")
+    p.add_argument("--meshes-only", action="store_true",
+                   help="only the convex meshes (6.), the report rendered again from OUT/performance/bench.json")
     args = p.parse_args(argv)
     t_start = time.perf_counter()
     build = pathlib.Path(args.build).resolve()
@@ -1143,6 +1183,8 @@ def main(argv=None, prog=None):
         for label, value, status in chain_targets(chain):
             log(f"  {status:5s} {label}: {value}")
         return 0
+    if args.meshes_only:
+        return meshes_only(build, scenes, out, args.quick, t_start)
     repeats = 3 if args.quick else 7
     T = 2.0 if args.quick else 10.0
     mj_dts = (1e-2, 1e-3)
@@ -1182,11 +1224,7 @@ def main(argv=None, prog=None):
         windows_tilts = run_tilts(build, folder, args.quick)
         log("== a chain of hinged links swinging from horizontal (BM_Chain), ours and MuJoCo's interleaved")
         chain = run_chain(build, scenes, folder, args.quick)
-    log("== convex meshes: the narrowphase per pair, beside the cube's (BM_Narrow)")
-    meshes = {"narrow": performance_meshes.run_narrow(build, scenes, args.quick)}
-    log("== convex meshes: a pile of pebbles, ours and MuJoCo's round by round (BM_PileHulls)")
-    with tempfile.TemporaryDirectory() as tmp:
-        meshes["pile"] = performance_meshes.run_mesh_pile(build, scenes, tmp, PEERS_PYTHON, args.quick)
+    meshes = run_meshes(build, scenes, args.quick)
     if peers is None:
         log("MuJoCo: not measured (no .venv-peers; scripts/bench.sh without --quick creates it)")
     accuracy = {"T": T, "omega0": [float(x) for x in omega0], "ours": ours, "mujoco": [], "equal_accuracy": []}

@@ -6,10 +6,12 @@ scenes. Figures only: the issue sets no number for either.
   to the cube's pair of the same kind (on the floor, on a body of its shape), measured
   in one run with the benchmarks' repetitions interleaved in random order, so that the
   machine's load falls on all of them alike.
-- A pile of 100 pebbles (convex meshes of 100 hull vertices) falling on a floor, the
-  time per simulated second of its first second (falling) and third (at rest) beside
-  MuJoCo's on the same STL (reports.performance_peers --mesh-pile), ours then theirs
-  round by round, each in its own process; the median ratio."""
+- A pile of 100 pebbles (convex meshes of 100 hull vertices) falling into a bin (a
+  static mesh surface, an open box), the time per simulated second of its first second
+  (falling) and third (at rest) beside MuJoCo's on the same STL (reports.performance_peers
+  --mesh-pile; its bin five box geoms), ours then theirs round by round, each in its own
+  process; the median ratio. A correctness figure beside it: the pebbles inside the bin
+  at 3 s, and how far a pebble's vertex got beyond a wall or below the floor."""
 import json
 import pathlib
 import statistics
@@ -70,10 +72,12 @@ def core_json(build, scenes, pattern):
 def our_mesh_pile(b):
     """BM_PileHulls' figures: CPU time per simulated second falling (0-1 s) and at rest
     (2-3 s), the narrowphase's share of each window's wall time, the overlap in the
-    output state, the fastest body and the bodies asleep at 3 s."""
+    output state, the fastest body, the bodies asleep and inside the bin at 3 s, and the
+    farthest a vertex got beyond the bin's walls and below its floor (0-3 s)."""
     h = bench_scenes.PILE_STEP
     out = {"steps_ok": b["steps_ok"], "steps": b["steps_planned"], "max_overlap_state_m": b["max_overlap_state_m"],
-           "max_speed_3s_mps": b["max_speed_3s_mps"], "asleep_3s": b["asleep_3s"]}
+           "max_speed_3s_mps": b["max_speed_3s_mps"], "asleep_3s": b["asleep_3s"], "inside_3s": b["inside_3s"],
+           "max_beyond_wall_m": b["max_beyond_wall_m"], "max_below_floor_m": b["max_below_floor_m"]}
     for w in ("fall", "rest"):
         steps = b[f"{w}_steps"]
         out[f"{w}_s_per_simulated_s"] = b[f"{w}_cpu_s"] / (steps * h) if steps else float("nan")
@@ -89,8 +93,9 @@ def median_round(rounds, engine):
 
 def run_mesh_pile(build, scenes, folder, peers_python, quick):
     """The pebbles' pile (mesh_scenes.PILE_COUNTS[0]) ours and MuJoCo's, round by round (1
-    round in quick mode, 3 else): {n, rounds: [{ours, mujoco}], ours, mujoco: each engine's
-    median round by its falling time, ratio_fall, ratio_rest: medians}; without MuJoCo
+    round in quick mode, 3 else): {n, vertices, axes_m, bin: its size, cells and thickness,
+    rounds: [{ours, mujoco}], ours, mujoco: each engine's median round by its falling
+    time, ratio_fall, ratio_rest: medians}; without MuJoCo
     (no peers_python) its figures and ratios are None."""
     n = mesh_scenes.PILE_COUNTS[0]
     rounds = []
@@ -104,6 +109,8 @@ def run_mesh_pile(build, scenes, folder, peers_python, quick):
             theirs = json.loads(out.read_text())
         rounds.append({"ours": ours, "mujoco": theirs})
     result = {"n": n, "vertices": mesh_scenes.PILE_HULL_VERTICES, "axes_m": list(mesh_scenes.PILE_HULL_AXES),
+              "bin": {"size_m": list(mesh_scenes.BIN_SIZE), "cells": mesh_scenes.BIN_CELLS,
+                      "thickness_m": mesh_scenes.BIN_THICKNESS},
               "rounds": rounds, "ours": median_round(rounds, "ours"), "mujoco": median_round(rounds, "mujoco"),
               "ratio_fall": None, "ratio_rest": None}
     if result["mujoco"]:
@@ -142,14 +149,15 @@ def mesh_pile_rows(pile, fmt_s):
     o, m = pile["ours"], pile["mujoco"]
     rows = [["rigidfmu (rk4)", fmt_s(o["fall_s_per_simulated_s"]), fmt_s(o["rest_s_per_simulated_s"]),
              f"{o['max_overlap_state_m'] * 1e3:.2f} mm", f"{o['max_speed_3s_mps']:.3g} m/s",
-             f"{o['asleep_3s']:.0f} of {pile['n']}"]]
+             f"{o['asleep_3s']:.0f} of {pile['n']}", f"{o['inside_3s']:.0f} of {pile['n']}"]]
     if m:
         rows.append([f"{m['engine']} (Euler)", fmt_s(m["fall_s_per_simulated_s"]), fmt_s(m["rest_s_per_simulated_s"]),
-                     f"{m['max_penetration_3s_m'] * 1e3:.2f} mm", f"{m['max_speed_3s']:.3g} m/s", "–"])
+                     f"{m['max_penetration_3s_m'] * 1e3:.2f} mm", f"{m['max_speed_3s']:.3g} m/s", "–",
+                     f"{m['inside_3s']} of {pile['n']}"])
         rows.append(["ratio ours/theirs (median of the rounds)", f"{pile['ratio_fall']:.2f}",
-                     f"{pile['ratio_rest']:.2f}", "", "", ""])
+                     f"{pile['ratio_rest']:.2f}", "", "", "", ""])
     else:
-        rows.append(["MuJoCo", "not measured", "not measured", "", "", ""])
+        rows.append(["MuJoCo", "not measured", "not measured", "", "", "", ""])
     return rows
 
 
@@ -160,6 +168,10 @@ def log_mesh_pile(pile):
           f"second: ours falling {o['fall_s_per_simulated_s']:.3g} s, at rest {o['rest_s_per_simulated_s']:.3g} s "
           f"(narrowphase {o['fall_narrowphase_share']:.0%}, {o['rest_narrowphase_share']:.0%} of the steps)",
           flush=True)
+    theirs = f", MuJoCo {m['inside_3s']}" if m else ""
+    print(f"  inside the bin at 3 s: ours {o['inside_3s']:.0f} of {pile['n']}{theirs}; farthest vertex beyond a "
+          f"wall {o['max_beyond_wall_m'] * 1e3:.2f} mm, below the floor {o['max_below_floor_m'] * 1e3:.2f} mm "
+          "(0-3 s)", flush=True)
     if m:
         print(f"  {m['engine']} Euler: falling {m['fall_s_per_simulated_s']:.3g} s, at rest "
               f"{m['rest_s_per_simulated_s']:.3g} s; ours/theirs {pile['ratio_fall']:.2f} falling, "

@@ -26,10 +26,12 @@ the peers' own venv (.venv-peers, made by scripts/peers_venv.sh) and read back a
   mj_energyPos and mj_energyVel, J) at the start and its largest departure, and the
   tip's position at the end. Generalized coordinates: the joints cannot drift.
 - With --mesh-pile N: pile_hulls_<N>.json (reports.mesh_scenes: the pile with each cube
-  a convex mesh, a pebble read from the same STL as ours) with Euler: the CPU time of
-  its first second (falling, from the start) and of its third (at rest, from the state
-  at 2 s), one run each, and from an untimed run of 3 s the deepest penetration, the
-  most contacts and the fastest body at 3 s.
+  a convex mesh, a pebble read from the same STL as ours, falling into a bin) with Euler:
+  the CPU time of its first second (falling, from the start) and of its third (at rest,
+  from the state at 2 s), one run each, and from an untimed run of 3 s the deepest
+  penetration, the most contacts, the fastest body and the bodies inside the bin at 3 s.
+  The bin is five box geoms, the solids our mesh surface's prisms make: MuJoCo collides
+  a mesh geom as its convex hull, which for an open box is a solid block.
 
 usage: python -m reports.performance_peers SCENES_DIR OUT.json [--quick] [--T 10] [--dts 1e-2,1e-3]
                       [--pile-timing N [--at-rest]] [--chain N --T 2] [--mesh-pile N]"""
@@ -60,17 +62,21 @@ BODY = ('    <body pos="{p}" quat="{q}"><freejoint/>'
 # The pile of pebbles: one mesh asset, MuJoCo's own convex hull of it (the mesh is convex),
 # each body's frame the file's as ours is (MuJoCo moves the geom to keep the mesh where
 # the file has it; our body frame is the file's moved to the centre of mass, which the
-# pebble's symmetric points put at the file's origin).
+# pebble's symmetric points put at the file's origin). The bin is five box geoms
+# (bin_geoms), not a mesh geom of bin.stl: MuJoCo collides a mesh geom as its convex
+# hull, which would fill the open box.
 MESH_PILE_MJCF = """<mujoco model="{name}">
   <compiler meshdir="{meshdir}"/>
   <option timestep="{dt}" gravity="{g}" integrator="Euler"/>
   <size memory="{memory}"/>
   <asset><mesh name="hull" file="{file}"/></asset>
   <worldbody>
-    <geom name="floor" type="plane" size="{half} {half} 0.1" pos="{floor}" friction="{mu} 0.005 0.0001"/>
+{bin}
 {bodies}
   </worldbody>
 </mujoco>"""
+
+BIN_GEOM = '    <geom name="{name}" type="box" size="{s}" pos="{p}" friction="{mu} 0.005 0.0001"/>'
 
 MESH_BODY = ('    <body pos="{p}" quat="{q}"><freejoint/>'
              '<geom type="mesh" mesh="hull" mass="{m}" friction="{mu} 0.005 0.0001"/></body>')
@@ -279,25 +285,53 @@ def pile(scene, integrator, repeats):
     return out
 
 
+def bin_bounds(surface, meshdir):
+    """The inside of the scene's bin (reports.mesh_scenes.bin_surface, not turned): the
+    box its triangles bound, (lo, hi), from its FILE.mesh.json, in the world frame."""
+    assert surface["orientation"] == [1.0, 0.0, 0.0, 0.0] and surface["mesh"]["scale"] == 1, surface
+    file = pathlib.Path(meshdir) / (surface["mesh"]["file"] + ".mesh.json")
+    v = np.array(json.loads(file.read_text())["vertices"]) + np.array(surface["position"])
+    return v.min(axis=0), v.max(axis=0)
+
+
+def bin_geoms(surface, meshdir):
+    """The bin as five boxes: its floor and four walls, each the solid behind the face
+    that our mesh surface's prisms fill (thickness deep, the face's own extent)."""
+    (lo, hi), t = bin_bounds(surface, meshdir), surface["mesh"]["thickness"]
+    c, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
+    z = lo[2] + half[2]
+    boxes = {"floor": ([c[0], c[1], lo[2] - t / 2], [half[0], half[1], t / 2]),
+             "wall_x0": ([lo[0] - t / 2, c[1], z], [t / 2, half[1], half[2]]),
+             "wall_x1": ([hi[0] + t / 2, c[1], z], [t / 2, half[1], half[2]]),
+             "wall_y0": ([c[0], lo[1] - t / 2, z], [half[0], t / 2, half[2]]),
+             "wall_y1": ([c[0], hi[1] + t / 2, z], [half[0], t / 2, half[2]])}
+    return "\n".join(BIN_GEOM.format(name=k, p=fmt(p), s=fmt(s), mu=surface.get("staticFriction", 0.6))
+                     for k, (p, s) in boxes.items())
+
+
 def mesh_pile_xml(scene, meshdir):
-    """pile_hulls_<N>.json as MJCF: pile_xml's floor, the bodies' one mesh file."""
-    surface = scene["surfaces"][0]
-    lo, hi = np.array(surface["min"]), np.array(surface["max"])
+    """pile_hulls_<N>.json as MJCF: the bin as box geoms (bin_geoms), the bodies' one
+    mesh file."""
     (file,) = {b["shape"]["file"] for b in scene["bodies"]}
     bodies = [MESH_BODY.format(p=fmt(b["position"]), q=fmt(b.get("orientation", [1, 0, 0, 0])), m=b["mass"],
                                mu=b.get("staticFriction", 0.6)) for b in scene["bodies"]]
-    centre = 0.5 * (lo + hi)
     return MESH_PILE_MJCF.format(name=scene["name"], meshdir=meshdir, file=file, dt=scene["solver"]["step"],
                                  g=fmt(scene["gravity"]), memory=memory_for(len(bodies)),
-                                 half=0.5 * float(max(hi[0] - lo[0], hi[1] - lo[1])),
-                                 floor=fmt([centre[0], centre[1], hi[2]]), mu=surface.get("staticFriction", 0.6),
-                                 bodies="\n".join(bodies))
+                                 bin=bin_geoms(scene["surfaces"][0], meshdir), bodies="\n".join(bodies))
+
+
+def inside_bin(data, lo, hi):
+    """The bodies whose centre is inside the bin (in x and y, above its floor)."""
+    x = data.xpos[1:]
+    within = (x[:, 0] > lo[0]) & (x[:, 0] < hi[0]) & (x[:, 1] > lo[1]) & (x[:, 1] < hi[1]) & (x[:, 2] > lo[2])
+    return int(np.sum(within))
 
 
 def mesh_pile(scene, meshdir):
     """The pebbles' pile with Euler: CPU time per simulated second of the first second
     and of the third (one run each), and from an untimed run of 3 s the deepest
-    penetration (-contact.dist), the most contacts and the fastest body at 3 s."""
+    penetration (-contact.dist), the most contacts, the fastest body and the bodies
+    inside the bin at 3 s."""
     model = mujoco.MjModel.from_xml_string(mesh_pile_xml(scene, meshdir))
     dt = model.opt.timestep
     steps = round(1.0 / dt)
@@ -315,6 +349,7 @@ def mesh_pile(scene, meshdir):
     return {"engine": f"MuJoCo {mujoco.__version__}", "n": len(scene["bodies"]), "integrator": "Euler", "dt": dt,
             "fall_s_per_simulated_s": fall / dt, "rest_s_per_simulated_s": rest / dt,
             "max_penetration_3s_m": deepest, "max_contacts": contacts, "max_speed_3s": fastest(data),
+            "inside_3s": inside_bin(data, *bin_bounds(scene["surfaces"][0], meshdir)),
             "warnings": int(sum(w.number for w in data.warning))}
 
 

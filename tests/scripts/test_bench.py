@@ -240,11 +240,14 @@ def test_pile_of_convex_meshes_beside_mujoco(quick):
     for key in ("fall_s_per_simulated_s", "rest_s_per_simulated_s", "fall_narrowphase_share"):
         assert measured(ours[key]), key
     assert math.isfinite(ours["max_overlap_state_m"]) and 0 <= ours["asleep_3s"] <= 100
+    # the bin: the pebbles inside it at 3 s, the farthest a vertex got beyond it (figures)
+    assert 0 <= ours["inside_3s"] <= 100 and pile["bin"]["size_m"] == [1.0, 1.0, 0.5]
+    assert math.isfinite(ours["max_beyond_wall_m"]) and math.isfinite(ours["max_below_floor_m"])
     if not HAVE_PEERS:
         assert pile["mujoco"] is None and pile["ratio_fall"] is None
         return
     m = pile["mujoco"]
-    assert m["engine"].startswith("MuJoCo") and m["warnings"] == 0
+    assert m["engine"].startswith("MuJoCo") and m["warnings"] == 0 and 0 <= m["inside_3s"] <= 100
     assert measured(m["fall_s_per_simulated_s"]) and measured(m["rest_s_per_simulated_s"])
     assert measured(pile["ratio_fall"]) and measured(pile["ratio_rest"])
 
@@ -263,7 +266,9 @@ def test_markdown_and_plots(quick):
     for shape, pairs in r["meshes"]["narrow"]["shapes"].items():
         assert f"{pairs['body']['ratio_to_cube']:.2f} |" in meshes, shape
     assert "| hull of 1000 points | 1000 | 1996 |" in meshes
-    assert "**A pile of 100 convex meshes**" in meshes and "| rigidfmu (rk4) |" in meshes
+    assert "**A pile of 100 convex meshes** falling into a mesh bin" in meshes and "| rigidfmu (rk4) |" in meshes
+    inside = r["meshes"]["pile"]["ours"]["inside_3s"]
+    assert "| inside the bin at 3 s |" in meshes and f"{inside:.0f} of 100 |" in meshes
     assert ("| ratio ours/theirs (median of the rounds) |" in meshes) == HAVE_PEERS
     assert "| rigidfmu rk4 | 1 ms |" in chain and "| ours, 0–0.2 s |" in chain
     assert ("**Interleaved.**" in chain) == HAVE_PEERS and ("not measured" in chain) != HAVE_PEERS

@@ -3,6 +3,7 @@ the growth it measures from the pile of 100 is that of N at equal height (bench.
 "Equal height" rows)."""
 import json
 
+import numpy as np
 import pytest
 from reports import mesh_scenes
 from reports import scenes as bench
@@ -82,5 +83,32 @@ def test_pile_of_pebbles_is_the_pile_of_cubes_with_meshes_in_their_places(tmp_pa
     assert [b["position"] for b in pebbles["bodies"]] == [b["position"] for b in cubes["bodies"]]
     assert {str(_without(b, "name", "position", "orientation", "shape", "mass")) for b in pebbles["bodies"]} == \
         {str(_without(cubes["bodies"][0], "name", "position", "orientation", "shape", "mass"))}
-    assert pebbles["surfaces"] == cubes["surfaces"] and pebbles["solver"]["step"] == cubes["solver"]["step"]
+    assert pebbles["solver"]["step"] == cubes["solver"]["step"]
     assert all(b["shape"] == {"type": "mesh", "file": "pebble.stl"} for b in pebbles["bodies"])
+    # the floor replaced by the bin, with the floor's friction and restitution
+    (floor,), (box,) = cubes["surfaces"], pebbles["surfaces"]
+    assert box["mesh"] == {"file": "bin.stl", "scale": 1, "thickness": mesh_scenes.BIN_THICKNESS}
+    assert all(box[k] == floor[k] for k in ("staticFriction", "kineticFriction", "restitution"))
+
+
+def test_the_bin_is_an_open_box_facing_inwards_with_seams(tmp_path):
+    """bin.stl: the floor (its top at the floor's, z = 0) and four walls of BIN_SIZE, every
+    triangle's front (counter-clockwise side) towards the inside, each face a grid of
+    BIN_CELLS x BIN_CELLS squares; the pile starts inside it."""
+    mesh_scenes.write(tmp_path)
+    written = json.loads((tmp_path / "bin.stl.mesh.json").read_text())
+    v, t = np.array(written["vertices"]), np.array(written["triangles"])
+    x, y, z = mesh_scenes.BIN_SIZE
+    assert np.allclose(v.min(axis=0), [-x / 2, -y / 2, 0]) and np.allclose(v.max(axis=0), [x / 2, y / 2, z])
+    assert len(t) == 5 * 2 * mesh_scenes.BIN_CELLS ** 2
+    a, b, c = v[t[:, 0]], v[t[:, 1]], v[t[:, 2]]
+    fronts = np.cross(b - a, c - a)
+    centres = (a + b + c) / 3
+    assert (np.einsum("ij,ij->i", fronts, np.array([0, 0, z / 2]) - centres) > 0).all()
+    # no triangle on top: the bin is open
+    assert not (np.isclose(v[t], z).all(axis=(1, 2))).any()
+    scene = json.loads((tmp_path / "pile_hulls_100.json").read_text())
+    for b in scene["bodies"]:
+        px, py, pz = b["position"]
+        assert abs(px) + max(mesh_scenes.PILE_HULL_AXES) < x / 2 and abs(py) + max(mesh_scenes.PILE_HULL_AXES) < y / 2
+        assert pz - max(mesh_scenes.PILE_HULL_AXES) > 0

@@ -110,8 +110,15 @@ inline Vec3 aabbHalfExtent(const Geo& g, const Mat3& R) {
       return e;
     }
     case ShapeType::Capsule: return g.halfLength * R.col(2).cwiseAbs() + Vec3::Constant(g.radius);
-    case ShapeType::Mesh:  // the hull's bounding box turned, about the centre of mass (not its centre)
-      return (R * g.hull->boxCentre).cwiseAbs() + R.cwiseAbs() * g.hull->boxHalf;
+    case ShapeType::Mesh: {  // its extent each way along each axis (about the centre of mass, not its middle)
+      Vec3 e;
+      for (int i = 0; i < 3; ++i) {
+        const Vec3 axis = R.row(i).transpose();  // world axis i in the hull's frame
+        const ConvexHull& h = *g.hull;
+        e[i] = std::max(h.vertices[supportVertex(h, axis)].dot(axis), -h.vertices[supportVertex(h, -axis)].dot(axis));
+      }
+      return e;
+    }
     case ShapeType::Compound: break;  // (a slot per part: no Geo is a compound)
   }
   return Vec3::Zero();

@@ -30,10 +30,6 @@ void linkHull(ConvexHull& h) {
   };
   flatten(neighbours, h.neighbourStart, h.neighbour);
   flatten(faces, h.vertexFaceStart, h.vertexFace);
-  Vec3 lo = h.vertices.front(), hi = h.vertices.front();
-  for (const Vec3& v : h.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-  h.boxCentre = 0.5 * (lo + hi);
-  h.boxHalf = 0.5 * (hi - lo);
 }
 
 int supportVertex(const ConvexHull& h, const Vec3& d) {

@@ -22,14 +22,13 @@ struct ConvexHull {
   // vertex farthest along a direction is found by walking uphill (linkHull).
   std::vector<int> neighbourStart, neighbour;
   std::vector<int> vertexFaceStart, vertexFace;
-  Vec3 boxCentre = Vec3::Zero(), boxHalf = Vec3::Zero();  // m, the vertices' bounding box
 
   int faceCount() const { return static_cast<int>(faceNormal.size()); }
   int faceSize(int f) const { return faceStart[f + 1] - faceStart[f]; }
   const Vec3& faceVertexAt(int f, int k) const { return vertices[faceVertex[faceStart[f] + k]]; }
 };
 
-// Fills a hull's neighbours, faces around each vertex and bounding box from its faces.
+// Fills a hull's neighbours and faces around each vertex from its faces.
 void linkHull(ConvexHull& hull);
 
 // The index of a vertex of the hull farthest along `direction` (hull frame): walks from

@@ -8,8 +8,27 @@
 #include <iostream>
 #include <string>
 
+#include "compound_shape.h"
 #include "model_description_xml.h"
 #include "modules.h"
+
+namespace {
+
+// A line per mesh or compound body: its file's (or compound's) origin in the body frame.
+void writeFrames(const rigid::Scene& scene, const std::string& path) {
+  std::ofstream out(path);
+  out.precision(9);
+  for (size_t i = 0; i < scene.model.bodies.size(); ++i) {
+    const rigid::Shape& shape = scene.model.bodies[i].shape;
+    if (shape.type != rigid::ShapeType::Mesh && shape.type != rigid::ShapeType::Compound) continue;
+    const rigid::Vec3 o = shape.type == rigid::ShapeType::Mesh ? shape.mesh->fileOrigin : shape.compound->origin;
+    out << "bodies[" << i << "] " << scene.model.bodies[i].name << ": the "
+        << (shape.type == rigid::ShapeType::Mesh ? "file's" : "compound's") << " origin lies at (" << o.x() << ", "
+        << o.y() << ", " << o.z() << ") m in the body frame (from the centre of mass)\n";
+  }
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   const bool fmi3 = argc == 5 && std::string(argv[3]) == "--fmi" && std::string(argv[4]) == "3";
@@ -27,6 +46,7 @@ int main(int argc, char** argv) {
     std::ofstream(dir + "/modules") << rigid::modulesNeeded(scene.model);
     std::ofstream warnings(dir + "/warnings");
     for (const std::string& w : scene.warnings) warnings << w << "\n";
+    writeFrames(scene, dir + "/frames");
     return 0;
   } catch (const std::exception& e) {
     std::cerr << argv[1] << ": " << e.what() << "\n";

@@ -51,6 +51,8 @@ def cmd_build(args) -> int:
 def cmd_check(args) -> int:
     described = fmu_package.describe(args.scene, native.find(win64=False))
     print(f"{args.scene}: the scene is valid (model {described.model_identifier}, modules {described.modules})")
+    for frame in described.frames:  # where to find a mesh file's origin, for placing the part
+        print(f"  {frame}")
     return 0
 
 

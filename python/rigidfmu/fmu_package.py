@@ -45,6 +45,7 @@ class Description:
     model_identifier: str
     modules: str
     warnings: tuple[str, ...] = ()  # notes that break no rule (a mesh's hull much larger than its solid)
+    frames: tuple[str, ...] = ()  # where each mesh or compound body's file or compound frame lies
 
 
 def describe(scene: pathlib.Path, native: native_module.Native, fmi: int = 2) -> Description:
@@ -74,9 +75,11 @@ def describe_staged(scene: pathlib.Path, resources: pathlib.Path, native: native
         warnings = tuple(notes.read_text().splitlines()) if notes.exists() else ()
         for warning in warnings:
             print(f"rigidfmu: warning: {warning}", file=sys.stderr)
+        frames = folder / "frames"
         return Description((folder / "modelDescription.xml").read_bytes(),
                            (folder / "model_identifier").read_text().strip(),
-                           (folder / "modules").read_text().strip(), warnings)
+                           (folder / "modules").read_text().strip(), warnings,
+                           tuple(frames.read_text().splitlines()) if frames.exists() else ())
 
 
 def runtime_dependencies(library: pathlib.Path) -> list[pathlib.Path]:

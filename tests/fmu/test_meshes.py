@@ -104,6 +104,19 @@ def test_a_stack_of_mesh_cubes_rests_at_the_closed_form_heights(slave):
         assert np.linalg.norm([v[f"m{k}.velocity[{i}]"] for i in (1, 2, 3)]) < 1e-3
 
 
+def sliding_acceleration(s, start, down, seconds, settled):
+    """The cube's acceleration down the slope: twice the leading coefficient of a
+    parabola fitted to its travel from `settled` s to `seconds` s."""
+    t, travel = [], []
+    for k in range(round(seconds / H)):
+        s.slave.doStep(k * H, H)
+        t.append((k + 1) * H)
+        travel.append((np.array(s.get("cube.position[1]", "cube.position[2]", "cube.position[3]")) - start) @ down)
+    t, travel = np.array(t), np.array(travel)
+    late = t >= settled - 1e-9
+    return 2 * np.polyfit(t[late], travel[late], 2)[0]
+
+
 @pytest.mark.parametrize("shape", ["mesh", "box"])
 def test_a_mesh_cube_slides_down_a_ramp_at_the_closed_form_acceleration(slave, shape):
     """On a 30 deg ramp, mu_s 0.5 < tan 30 deg, a cube slides at g (sin - mu_k cos),
@@ -119,15 +132,8 @@ def test_a_mesh_cube_slides_down_a_ramp_at_the_closed_form_acceleration(slave, s
     ramp = {"name": "ramp", "min": [-5, -1, -0.5], "max": [5, 1, 0.5], "orientation": q,
             "staticFriction": 0.5, "kineticFriction": 0.3, "restitution": 0.0}
     s = slave(scenes.scene(f"Ramp_{shape}", [cube], surfaces=[ramp]), files=CUBE_FILES)
-    t, travel = [], []
-    for k in range(round(2.0 / H)):
-        s.slave.doStep(k * H, H)
-        t.append((k + 1) * H)
-        travel.append((np.array(s.get("cube.position[1]", "cube.position[2]", "cube.position[3]")) - centre) @ down)
-    t, travel = np.array(t), np.array(travel)
-    late = t >= 0.5 - 1e-9
     a = G * (math.sin(theta) - 0.3 * math.cos(theta))
-    assert 2 * np.polyfit(t[late], travel[late], 2)[0] == pytest.approx(a, rel=1e-2)
+    assert sliding_acceleration(s, centre, down, 2.0, 0.5) == pytest.approx(a, rel=1e-2)
 
 
 def tetrahedron(a):
@@ -312,15 +318,8 @@ def test_a_box_slides_down_a_mesh_ramp_at_the_closed_form_acceleration(slave):
                        staticFriction=0.5, kineticFriction=0.3, restitution=0.0)
     ramp = mesh_ramp(theta, staticFriction=0.5, kineticFriction=0.3, restitution=0.0)
     s = slave(scenes.scene("MeshRamp", [cube], surfaces=[ramp]), files=RAMP_FILES)
-    t, travel = [], []
-    for k in range(round(1.0 / H)):
-        s.slave.doStep(k * H, H)
-        t.append((k + 1) * H)
-        travel.append((np.array(s.get("cube.position[1]", "cube.position[2]", "cube.position[3]")) - start) @ down)
-    t, travel = np.array(t), np.array(travel)
-    late = t >= 0.3 - 1e-9
-    assert 2 * np.polyfit(t[late], travel[late], 2)[0] == pytest.approx(G * (math.sin(theta) - 0.3 * math.cos(theta)),
-                                                                        rel=1e-2)
+    a = G * (math.sin(theta) - 0.3 * math.cos(theta))
+    assert sliding_acceleration(s, start, down, 1.0, 0.3) == pytest.approx(a, rel=1e-2)
 
 
 def test_a_ball_rolls_down_a_mesh_chute_at_the_speed_energy_gives(slave):
@@ -367,3 +366,23 @@ def test_every_shape_rests_on_a_mesh_floor_at_its_height(slave, shape, height):
     v = run(slave, scenes.scene(f"MeshFloor_{shape['type']}", [body], surfaces=[floor]), RAMP_FILES, 1.0,
             names_of("body"))
     assert position(v, "body") == pytest.approx([0.13, 0.07, height], abs=1e-3)
+
+
+def test_check_says_where_a_mesh_files_origin_lies_in_the_body_frame(tmp_path):
+    """A box file from (0, 0, 0) to (1, 1, 1), scaled by 0.2: its centre of mass at
+    (0.1, 0.1, 0.1) in the scaled file's frame, so the file's origin at (-0.1, -0.1, -0.1)
+    in the body frame."""
+    corner = trimesh.creation.box(extents=(1.0, 1.0, 1.0))
+    corner.apply_translation((0.5, 0.5, 0.5))
+    (tmp_path / "corner.stl").write_bytes(stl(corner))
+    body = scenes.body("part", shape={"type": "mesh", "file": "corner.stl", "scale": 0.2})
+    (tmp_path / "scene.json").write_text(json.dumps(scenes.scene("Corner", [body])))
+    env = dict(os.environ, RIGIDFMU_SKIP_SETUP="1", PYTHONPATH=str(ROOT / "python"))
+    env.pop("LD_PRELOAD", None)
+    run_ = subprocess.run([sys.executable, "-m", "rigidfmu", "check", str(tmp_path / "scene.json")],
+                          capture_output=True, text=True, env=env)
+    assert run_.returncode == 0, run_.stderr
+    line = next(line for line in run_.stdout.splitlines() if "bodies[0] part" in line)
+    origin = [float(x) for x in line.split("(")[1].split(")")[0].split(",")]
+    assert origin == pytest.approx([-0.1, -0.1, -0.1], abs=1e-8)  # (float32 coordinates in the STL)
+    assert "the file's origin lies at" in line

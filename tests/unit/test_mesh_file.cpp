@@ -198,7 +198,8 @@ TEST_F(MeshFolder, AnLCompoundOfABoxAndAMeshHasTheParallelAxisSum) {
       "shape": {"type": "compound", "parts": [
         {"shape": {"type": "box", "size": [0.2, 0.1, 0.1]}},
         {"shape": {"type": "mesh", "file": "leg.stl"}, "position": [-0.1, -0.05, 0.05]}]}}]})");
-  const rigid::BodyConstants& b = rigid::loadSceneFile((dir_ / "scene.json").string()).model.bodies[0];
+  const rigid::Scene scene = rigid::loadSceneFile((dir_ / "scene.json").string());
+  const rigid::BodyConstants& b = scene.model.bodies[0];
   const rigid::CompoundShape& c = *b.shape.compound;
   // by hand: volumes 0.002 and 0.001 m^3, centres (0, 0, 0) and (-0.05, 0, 0.1)
   const Vec3 centre = (0.001 * Vec3(-0.05, 0, 0.1)) / 0.003;

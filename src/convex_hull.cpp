@@ -6,6 +6,22 @@
 
 namespace rigid {
 
+bool addFace(ConvexHull& h, const std::vector<int>& loop) {
+  Vec3 n = Vec3::Zero(), mean = Vec3::Zero();
+  for (size_t k = 0; k < loop.size(); ++k) {
+    n += h.vertices[loop[k]].cross(h.vertices[loop[(k + 1) % loop.size()]]);
+    mean += h.vertices[loop[k]];
+  }
+  if (!(n.norm() > 0.0)) return false;
+  n.normalize();
+  if (h.faceStart.empty()) h.faceStart.push_back(0);
+  h.faceVertex.insert(h.faceVertex.end(), loop.begin(), loop.end());
+  h.faceStart.push_back(static_cast<int>(h.faceVertex.size()));
+  h.faceNormal.push_back(n);
+  h.faceOffset.push_back(n.dot(mean / static_cast<double>(loop.size())));
+  return true;
+}
+
 void linkHull(ConvexHull& h) {
   const int n = static_cast<int>(h.vertices.size());
   std::vector<std::vector<int>> neighbours(n), faces(n);

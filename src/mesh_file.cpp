@@ -94,9 +94,9 @@ json readCanonical(const std::string& folder, const std::string& file, const std
   return j;
 }
 
-// The hull's faces as convex polygons with their outward planes (Newell's normal, the
-// plane through the face's mean), vertices moved by `shift`; refused when a face has
-// no area, bends, or leaves a point of `inside` outside its plane.
+// The hull's faces as convex polygons with their outward planes (addFace), vertices
+// moved by `shift`; refused when a face has no area, bends, or leaves a point of
+// `inside` outside its plane.
 void readHull(const json& j, const Vec3& scale, const Vec3& shift, const std::vector<Vec3>& inside, double size,
               const std::string& field, const std::string& file, ConvexHull& hull) {
   for (const json& v : member(j, "vertices", field, file))
@@ -106,27 +106,16 @@ void readHull(const json& j, const Vec3& scale, const Vec3& shift, const std::ve
   for (const json& f : member(j, "faces", field, file)) {
     const std::string where = "hull face " + std::to_string(hull.faceNormal.size());
     const std::vector<int> loop = indices(f, 3, where, field, file);
-    Vec3 n = Vec3::Zero(), mean = Vec3::Zero();
-    for (size_t k = 0; k < loop.size(); ++k) {
-      if (loop[k] < 0 || loop[k] >= static_cast<int>(hull.vertices.size()))
-        refuse(field, file, where + " names vertex " + std::to_string(loop[k]) + ", which the hull lacks");
-      const Vec3& a = hull.vertices[loop[k]];
-      const Vec3& b = hull.vertices[loop[(k + 1) % loop.size()]];
-      n += a.cross(b);
-      mean += a;
-    }
-    if (!(n.norm() > 0.0)) refuse(field, file, where + " has no area");
-    n.normalize();
-    mean /= static_cast<double>(loop.size());
-    const double offset = n.dot(mean);
+    for (int i : loop)
+      if (i < 0 || i >= static_cast<int>(hull.vertices.size()))
+        refuse(field, file, where + " names vertex " + std::to_string(i) + ", which the hull lacks");
+    if (!addFace(hull, loop)) refuse(field, file, where + " has no area");
+    const Vec3& n = hull.faceNormal.back();
+    const double offset = hull.faceOffset.back();
     for (int i : loop)
       if (std::abs(n.dot(hull.vertices[i]) - offset) > tol) refuse(field, file, where + " is not flat");
     for (const Vec3& p : inside)
       if (n.dot(p) > offset + tol) refuse(field, file, where + " leaves part of the mesh outside: not its hull");
-    hull.faceVertex.insert(hull.faceVertex.end(), loop.begin(), loop.end());
-    hull.faceStart.push_back(static_cast<int>(hull.faceVertex.size()));
-    hull.faceNormal.push_back(n);
-    hull.faceOffset.push_back(offset);
   }
 }
 
@@ -174,17 +163,8 @@ ConvexHull prism(const Vec3& a, const Vec3& b, const Vec3& c, double thickness, 
   ConvexHull h;
   for (const Vec3& v : {a, b, c}) h.vertices.push_back(v - centre);
   for (const Vec3& v : {a, b, c}) h.vertices.push_back(v - thickness * front - centre);
-  const std::vector<std::vector<int>> faces = {{0, 1, 2}, {3, 5, 4}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}};
-  h.faceStart.push_back(0);
-  for (const std::vector<int>& f : faces) {
-    Vec3 n = Vec3::Zero();
-    for (size_t k = 0; k < f.size(); ++k) n += h.vertices[f[k]].cross(h.vertices[f[(k + 1) % f.size()]]);
-    n.normalize();
-    h.faceVertex.insert(h.faceVertex.end(), f.begin(), f.end());
-    h.faceStart.push_back(static_cast<int>(h.faceVertex.size()));
-    h.faceNormal.push_back(n);
-    h.faceOffset.push_back(n.dot(h.vertices[f[0]]));
-  }
+  for (const std::vector<int>& f : {std::vector<int>{0, 1, 2}, {3, 5, 4}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}})
+    addFace(h, f);  // (a triangle of some area, sheetFault checked: so is every face)
   return h;
 }
 

@@ -28,6 +28,11 @@ struct ConvexHull {
   const Vec3& faceVertexAt(int f, int k) const { return vertices[faceVertex[faceStart[f] + k]]; }
 };
 
+// Appends a face, its vertices' indices counter-clockwise seen from outside, with its
+// outward plane: Newell's normal (robust for any planar polygon) through the vertices'
+// mean. False, and nothing appended, when the face has no area.
+bool addFace(ConvexHull& hull, const std::vector<int>& loop);
+
 // Fills a hull's neighbours and faces around each vertex from its faces.
 void linkHull(ConvexHull& hull);
 

@@ -48,13 +48,17 @@ Vec3 meshScale(const Object& o) {
   return s;
 }
 
+// The folder that the mesh file `o.file` is read from.
+const std::string& meshFolder(const Object& o, const SceneFiles& files) {
+  if (!files.folder) fail(o.path("file"), "a mesh needs the scene's folder: read the scene from its file");
+  return *files.folder;
+}
+
 Shape readMesh(const Object& o, const SceneFiles& files) {
   Shape s;
   s.type = ShapeType::Mesh;
-  const std::string file = o.string("file");
-  if (!files.folder) fail(o.path("file"), "a mesh needs the scene's folder: read the scene from its file");
   std::string warning;
-  s.mesh = readMeshShape(*files.folder, file, meshScale(o), o.path("file"), warning);
+  s.mesh = readMeshShape(meshFolder(o, files), o.string("file"), meshScale(o), o.path("file"), warning);
   if (!warning.empty() && files.warnings) files.warnings->push_back(warning);
   return s;
 }
@@ -286,10 +290,8 @@ void readMeshSurface(const Object& o, const SceneFiles& files, Surface& s) {
   for (const char* key : {"min", "max", "beltVelocity"})
     if (o.has(key)) fail(o.path(key), "a mesh surface is placed by position and orientation, and has no belt");
   const Object m(o.at("mesh"), o.path("mesh"), {"file", "scale", "thickness"});
-  const std::string file = m.string("file");
-  if (!files.folder) fail(m.path("file"), "a mesh needs the scene's folder: read the scene from its file");
   const double thickness = positive(m, "thickness", &defaults::kSurfaceMeshThickness);
-  s.mesh = readSurfaceMesh(*files.folder, file, meshScale(m), o.vec3("position", Vec3::Zero()),
+  s.mesh = readSurfaceMesh(meshFolder(m, files), m.string("file"), meshScale(m), o.vec3("position", Vec3::Zero()),
                            unitQuaternion(o, "orientation"), thickness, m.path("file"));
   s.min = s.max = s.mesh->vertices.front();
   for (const Vec3& v : s.mesh->vertices) s.min = s.min.cwiseMin(v), s.max = s.max.cwiseMax(v);

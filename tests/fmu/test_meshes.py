@@ -15,6 +15,7 @@ import pytest
 import trimesh
 
 import scenes
+from rigidfmu.references.quaternion import quat_axis_angle, quat_mul, rotation_matrix
 
 G = 9.81
 EDGE = 0.2  # m, the cubes' edge
@@ -35,7 +36,7 @@ BOX = {"type": "box", "size": [EDGE] * 3}
 
 
 def quat_about_y(angle):
-    return [math.cos(angle / 2), 0.0, math.sin(angle / 2), 0.0]
+    return list(quat_axis_angle([0.0, 1.0, 0.0], angle))
 
 
 def run(slave, scene, files, seconds, names):
@@ -151,21 +152,14 @@ def test_a_tetrahedron_dropped_on_its_vertex_falls_onto_a_face(slave):
     body's own axes turned) pointing down within 1 deg."""
     mesh, h = tetrahedron(0.3)
     files = {"tetra.stl": stl(mesh)}
-    flip = np.array([0.0, 1.0, 0.0, 0.0])  # (w, x, y, z): half a turn about x, apex down
-    tilt = np.array(quat_about_y(0.1))
-    w1, x1, y1, z1 = tilt
-    w2, x2, y2, z2 = flip
-    q = [w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2, w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-         w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2, w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2]
+    flip = [0.0, 1.0, 0.0, 0.0]  # (w, x, y, z): half a turn about x, apex down
+    q = list(quat_mul(quat_about_y(0.1), flip))
     body = scenes.body("tetra", shape={"type": "mesh", "file": "tetra.stl"}, density=2700.0,
                        position=[0.0, 0.0, 0.75 * h + 0.02], orientation=q, restitution=0.0)
     del body["mass"]
     v = run(slave, scenes.scene("Tetra", [body], surfaces=[scenes.floor()]), files, 3.0, names_of("tetra"))
     assert v["tetra.position[3]"] == pytest.approx(h / 4, abs=1e-3)
-    w, x, y, z = (v[f"tetra.orientation[{i}]"] for i in (1, 2, 3, 4))
-    R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                  [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                  [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+    R = rotation_matrix([v[f"tetra.orientation[{i}]"] for i in (1, 2, 3, 4)])
     normals = [np.cross(mesh.vertices[f[1]] - mesh.vertices[f[0]], mesh.vertices[f[2]] - mesh.vertices[f[0]])
                for f in mesh.faces]
     lowest = min((R @ (n / np.linalg.norm(n)))[2] for n in normals)

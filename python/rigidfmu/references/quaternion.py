@@ -15,6 +15,14 @@ def quat_mul(a, b):
                      aw * bz + ax * by - ay * bx + az * bw])
 
 
+def rotation_matrix(q):
+    """R of the quaternion (w, x, y, z), normalised: body -> world."""
+    w, x, y, z = np.asarray(q, dtype=float) / np.linalg.norm(q)
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
 def quat_axis_angle(axis, angle):
     """The rotation by `angle` (rad) about `axis`; identity for a zero axis."""
     axis = np.asarray(axis, dtype=float)

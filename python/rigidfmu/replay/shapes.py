@@ -21,6 +21,7 @@ import pathlib
 import numpy as np
 
 from rigidfmu.errors import ReplayError
+from rigidfmu.references.quaternion import rotation_matrix
 
 PRIMITIVE_VOLUMES = {
     "sphere": lambda s: 4.0 / 3.0 * math.pi * s["radius"] ** 3,
@@ -86,7 +87,7 @@ def compound_shape(shape: dict, folder: pathlib.Path | None, field: str) -> tupl
         drawn, volume, centre = replay_shape(part["shape"], folder, f"{field}.parts[{k}].shape")
         if volume is None:
             raise ReplayError(f"{field}.parts[{k}].shape: no volume for a {part['shape'].get('type')} shape")
-        turn = rotation(part.get("orientation", [1.0, 0.0, 0.0, 0.0]))
+        turn = rotation_matrix(part.get("orientation", [1.0, 0.0, 0.0, 0.0]))
         at = np.asarray(part.get("position", [0.0, 0.0, 0.0]), dtype=float) + turn @ centre
         placed.append((part, drawn, volume, at))
     total = sum(volume for _, _, volume, _ in placed)
@@ -96,14 +97,6 @@ def compound_shape(shape: dict, folder: pathlib.Path | None, field: str) -> tupl
     parts = [{**part, "shape": drawn, "position": (position - centre).tolist()}
              for part, drawn, _, position in placed]
     return {**shape, "parts": parts}, total, np.zeros(3)
-
-
-def rotation(q) -> np.ndarray:
-    """The rotation matrix of the quaternion (w, x, y, z), normalised."""
-    w, x, y, z = np.asarray(q, dtype=float) / np.linalg.norm(q)
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
 
 
 def replay_shape(shape: dict, folder: pathlib.Path | None, field: str) -> tuple[dict, float | None, np.ndarray]:
